@@ -1,0 +1,18 @@
+#pragma once
+// The simulation box: axis-aligned, z up. Walls, if any, are fixes; the domain only says
+// where particles may be at the end of a step and bounds the neighbour grid.
+#include "engine/real.hpp"
+
+namespace pbf {
+
+struct Domain {
+  double lo[3] = {0, 0, 0};
+  double hi[3] = {1, 1, 1};
+
+  bool contains(real x, real y, real z) const {
+    return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
+  }
+  double extent(int axis) const { return hi[axis] - lo[axis]; }
+};
+
+}  // namespace pbf

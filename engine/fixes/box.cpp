@@ -1,0 +1,165 @@
+// box: walls at the domain faces. Positions are projected onto the box in every constraint
+// iteration (after the solver's correction); after the velocity update, a particle touching
+// a wall keeps -e times its incoming normal velocity and loses tangential velocity at a
+// rate per second, exp(-rate dt) per step, so the friction a sliding front feels does not
+// depend on the time step.
+//
+// With wall_density on, each wall counts as fluid at rest density filling the half-space
+// behind it. For a particle at distance d < h from a face that fluid's share of the kernel is
+//   f(d) = integral over {z > d + delta} of W_poly6 dV = pi c / 4 (F(h) - F(d + delta)),
+//   F(z) = integral (h^2 - z^2)^4 dz,
+// with delta (a small fraction of the spacing) chosen so that a particle of the initial
+// lattice's first layer sees exactly the lattice sites it misses. Faces combine as
+// 1 - prod_k (1 - f_k): exact for one wall and close at edges and corners, where a plain sum
+// would count the regions behind two walls twice. The solver adds rho0 times that and its
+// gradient. Without it, particles near a wall miss part of their neighbourhood: the solver
+// then packs them tighter, and the fluid sinks and sticks at the walls.
+#include <cmath>
+#include <vector>
+
+#include "engine/density_boundary.hpp"
+#include "engine/error.hpp"
+#include "engine/fixes/styles.hpp"
+#include "engine/mass.hpp"
+#include "engine/parallel.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Box : public Fix, public DensityBoundary {
+ public:
+  Box(const std::string& id, const Params& p)
+      : Fix(id, "box"),
+        restitution_(p.real("restitution")),
+        friction_(p.real("friction")),
+        wall_density_(p.boolean("wall_density")) {
+    if (restitution_ < 0 || restitution_ > 1) throw Error("parameter 'restitution' must be in [0, 1]");
+    if (friction_ < 0) throw Error("parameter 'friction' must be >= 0");
+  }
+
+  std::vector<Stage> stages() const override {
+    if (restitution_ > 0) return {Stage::predict, Stage::constraints, Stage::velocity_update};
+    return {Stage::constraints, Stage::velocity_update};
+  }
+  Role role() const override { return Role::boundary; }
+  const DensityBoundary* density_boundary() const override { return wall_density_ ? this : nullptr; }
+
+  // Only with restitution: the velocity each particle arrives with (within a step only).
+  void predict(Simulation& sim) override {
+    const auto& P = sim.particles();
+    const real* v[3] = {P.vx(), P.vy(), P.vz()};
+    for (int c = 0; c < 3; ++c) incoming_[c].assign(v[c], v[c] + P.size());
+  }
+
+  void constraint(Simulation& sim, int) override {
+    auto& P = sim.particles();
+    const Domain& d = sim.domain();
+    real* x[3] = {P.x(), P.y(), P.z()};
+    const std::size_t n = P.size();
+    for (int a = 0; a < 3; ++a) {
+      const real lo = real(d.lo[a]), hi = real(d.hi[a]);
+      real* xa = x[a];
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) xa[i] = xa[i] < lo ? lo : (xa[i] > hi ? hi : xa[i]);
+    }
+  }
+
+  void velocity_update(Simulation& sim) override {
+    auto& P = sim.particles();
+    const Domain& d = sim.domain();
+    const real* x[3] = {P.x(), P.y(), P.z()};
+    real* v[3] = {P.vx(), P.vy(), P.vz()};
+    const real keep = real(std::exp(-friction_ * sim.timestep()));
+    const real e = real(restitution_);
+    const bool bounce = restitution_ > 0;
+    const std::size_t n = P.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int a = 0; a < 3; ++a) {
+        // side: -1 touching the lower face, +1 the upper one; a clamped position is exact.
+        const int side = x[a][i] <= real(d.lo[a]) ? -1 : (x[a][i] >= real(d.hi[a]) ? 1 : 0);
+        if (side == 0) continue;
+        const real arriving = bounce ? incoming_[a][i] : v[a][i];
+        if (arriving * side > 0) v[a][i] = -e * arriving;  // moving into the wall
+        v[(a + 1) % 3][i] *= keep;
+        v[(a + 2) % 3][i] *= keep;
+      }
+    }
+  }
+
+  void init(Simulation& sim) override {
+    if (!wall_density_) return;
+    const auto& P = sim.particles();
+    const double mass = deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) / double(P.size());
+    const double spacing = lattice_spacing(mass, sim.kernels(), sim.rest_density());
+    const double missing = lattice_wall_density(mass, sim.kernels(), sim.rest_density()) / sim.rest_density();
+    const double h = sim.kernel_radius();
+    double lo = -0.5 * spacing, hi = h;  // f falls with the distance
+    for (int it = 0; it < 100; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      real slope;
+      (share(sim, real(0.5 * spacing + mid), slope) > missing ? lo : hi) = mid;
+    }
+    delta_ = real(0.5 * (lo + hi));
+  }
+
+  void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const override {
+    const Domain& d = sim.domain();
+    const real h = sim.kernels().h;
+    const real p[3] = {x, y, z};
+    real f[6], df[6];  // share of each face and its derivative along the face's axis
+    real outside = 1;  // prod_k (1 - f_k)
+    bool near = false;
+    for (int a = 0; a < 3; ++a) {
+      const real to_lo = p[a] - real(d.lo[a]) + delta_, to_hi = real(d.hi[a]) - p[a] + delta_;
+      f[2 * a] = to_lo < h ? share(sim, to_lo, df[2 * a]) : (df[2 * a] = 0, real(0));
+      f[2 * a + 1] = to_hi < h ? share(sim, to_hi, df[2 * a + 1]) : (df[2 * a + 1] = 0, real(0));
+      df[2 * a + 1] = -df[2 * a + 1];  // the distance to the upper face falls as x_a grows
+      near = near || f[2 * a] > 0 || f[2 * a + 1] > 0;
+      outside *= (1 - f[2 * a]) * (1 - f[2 * a + 1]);
+    }
+    if (!near) return;
+    const real rho0 = real(sim.rest_density());
+    rho += rho0 * (1 - outside);
+    for (int k = 0; k < 6; ++k)
+      if (df[k] != 0) grad[k / 2] += rho0 * outside / (1 - f[k]) * df[k];
+  }
+
+ private:
+  // f(dist), the kernel's share behind a face, and its derivative (negative).
+  static real share(const Simulation& sim, real dist, real& slope) {
+    const real h = sim.kernels().h, h2 = h * h;
+    const real zd = dist > 0 ? (dist < h ? dist : h) : 0;
+    const real scale = real(M_PI) * sim.kernels().poly6_coef / 4;
+    auto F = [&](real z) {
+      const real z2 = z * z;
+      return z * (h2 * h2 * h2 * h2 - z2 * (h2 * h2 * h2 * real(4.0 / 3) - z2 * (h2 * h2 * real(6.0 / 5) -
+                                                                                 z2 * (h2 * real(4.0 / 7) - z2 / 9))));
+    };
+    const real q = h2 - zd * zd;
+    slope = dist > 0 && dist < h ? -scale * q * q * q * q : 0;
+    return scale * (F(h) - F(zd));
+  }
+
+  real delta_ = 0;
+  double restitution_, friction_;
+  bool wall_density_;
+  std::vector<real> incoming_[3];
+};
+
+}  // namespace
+
+void register_box(StyleRegistry& r) {
+  r.add({"box",
+         StyleKind::fix,
+         "walls at the domain faces: projection, restitution, friction, wall density",
+         {{"restitution", ParamType::Real, 0.0, "", "normal velocity kept after an impact, reversed (0..1)"},
+          {"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at a wall, exp(-rate dt)"},
+          {"wall_density", ParamType::Bool, true, "",
+           "count each wall as fluid at rest density behind it in the density sum"}},
+         [](const std::string& id, const Params& p) { return std::make_unique<Box>(id, p); }, nullptr});
+}
+
+}  // namespace pbf

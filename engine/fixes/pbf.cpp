@@ -1,0 +1,202 @@
+// pbf: the density constraint of Macklin & Mueller, "Position Based Fluids" (2013), with
+// its integrator: predict positions, iterate the constraint, velocities from positions.
+//
+//   C_i      = rho_i / rho0 - 1          (one-sided: max(C_i, 0))
+//   lambda_i = -C_i / (sum_k |grad_k C_i|^2 + epsilon S0)
+//   dp_i     = 1/rho0 sum_j m_j (lambda_i + lambda_j + s_corr) gradW_ij  + walls
+//   s_corr   = -k (W(r_ij) / W(dq h))^n / S0
+//
+// S0 is sum_k |grad_k C_i|^2 for a particle at rest inside the initial lattice. Measuring
+// epsilon and s_corr in units of S0 makes them scale-free: the same parameters behave the
+// same at any resolution and in any unit system (the paper's values assume its units).
+#include <cmath>
+#include <vector>
+
+#include "engine/error.hpp"
+#include "engine/fixes/styles.hpp"
+#include "engine/mass.hpp"
+#include "engine/parallel.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class PositionBasedFluid : public Fix {
+ public:
+  PositionBasedFluid(const std::string& id, const Params& p)
+      : Fix(id, "pbf"),
+        iterations_(static_cast<int>(p.integer("iterations"))),
+        epsilon_(p.real("epsilon")),
+        k_(p.real("scorr_k")),
+        n_(static_cast<int>(p.integer("scorr_n"))),
+        dq_(p.real("scorr_dq")),
+        one_sided_(p.boolean("one_sided")) {
+    if (iterations_ < 1 || iterations_ > 1000) throw Error("parameter 'iterations' must be in 1..1000");
+    if (!(epsilon_ > 0)) throw Error("parameter 'epsilon' must be positive");
+    if (k_ < 0) throw Error("parameter 'scorr_k' must be >= 0");
+    if (n_ < 1 || n_ > 16) throw Error("parameter 'scorr_n' must be in 1..16");
+    if (!(dq_ > 0 && dq_ < 1)) throw Error("parameter 'scorr_dq' must be in (0, 1) (a fraction of h)");
+  }
+
+  std::vector<Stage> stages() const override {
+    return {Stage::predict, Stage::constraints, Stage::velocity_update};
+  }
+  Role role() const override { return Role::solver; }
+  int constraint_iterations() const override { return iterations_; }
+  bool needs_neighbors() const override { return true; }
+
+  void init(Simulation& sim) override {
+    auto& P = sim.particles();
+    lambda_ = P.declare({"lambda", 1, "PBF constraint multiplier lambda (m^2)"});
+    fields_ = {"lambda"};
+    const double mean_mass =
+        deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) / double(P.size());
+    S0_ = lattice_gradient_sum(mean_mass, sim.kernels(), sim.rest_density());
+    scorr_w_ = sim.kernels().poly6(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
+  }
+
+  void predict(Simulation& sim) override {
+    auto& P = sim.particles();
+    const std::size_t n = P.size();
+    for (auto& c : prev_) c.resize(n);
+    const real dt = real(sim.timestep());
+    real* x[3] = {P.x(), P.y(), P.z()};
+    const real* v[3] = {P.vx(), P.vy(), P.vz()};
+    for (int c = 0; c < 3; ++c) {
+      real* prev = prev_[c].data();
+      real* xc = x[c];
+      const real* vc = v[c];
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        prev[i] = xc[i];
+        xc[i] += dt * vc[i];
+      }
+    }
+  }
+
+  void constraint(Simulation& sim, int /*iteration*/) override {
+    auto& P = sim.particles();
+    const auto& grid = sim.neighbors();
+    const Kernels& K = sim.kernels();
+    const std::size_t n = P.size();
+    const real rho0 = real(sim.rest_density());
+    const real inv_rho0 = 1 / rho0;
+    const real relax = real(epsilon_ * S0_);
+    const real scorr_scale = real(k_ / S0_);
+    const real inv_wdq = 1 / scorr_w_;
+    real *x = P.x(), *y = P.y(), *z = P.z();
+    const real* m = P.mass();
+    real* lambda = P.data(lambda_);
+    const auto& walls = sim.density_boundaries();
+    for (auto& c : dp_) c.resize(n);
+
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      real rho = m[i] * K.poly6(0);
+      real gi[3] = {0, 0, 0};
+      real sum_sq = 0;
+      const std::uint32_t* nb = grid.neighbors(i);
+      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
+        const std::uint32_t j = nb[k];
+        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+        const real r2 = dx * dx + dy * dy + dz * dz;
+        rho += m[j] * K.poly6(r2);
+        const real g = m[j] * inv_rho0 * K.spiky_grad_factor(r2);  // grad_j C_i = -g r_ij
+        gi[0] += g * dx;
+        gi[1] += g * dy;
+        gi[2] += g * dz;
+        sum_sq += g * g * r2;
+      }
+      real wall_grad[3] = {0, 0, 0};
+      for (const DensityBoundary* b : walls) b->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
+      for (int c = 0; c < 3; ++c) gi[c] += wall_grad[c] * inv_rho0;
+      real C = rho * inv_rho0 - 1;
+      if (one_sided_ && C < 0) C = 0;
+      lambda[i] = -C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
+    }
+
+    real *dpx = dp_[0].data(), *dpy = dp_[1].data(), *dpz = dp_[2].data();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      real d[3] = {0, 0, 0};
+      const std::uint32_t* nb = grid.neighbors(i);
+      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
+        const std::uint32_t j = nb[k];
+        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+        const real r2 = dx * dx + dy * dy + dz * dz;
+        real s = 0;
+        if (scorr_scale > 0) {
+          const real ratio = K.poly6(r2) * inv_wdq;
+          real p = ratio;
+          for (int e = 1; e < n_; ++e) p *= ratio;
+          s = -scorr_scale * p;
+        }
+        const real g = m[j] * inv_rho0 * (lambda[i] + lambda[j] + s) * K.spiky_grad_factor(r2);
+        d[0] += g * dx;
+        d[1] += g * dy;
+        d[2] += g * dz;
+      }
+      if (!walls.empty()) {
+        // A wall's gradient moves only particle i (the wall has no lambda of its own).
+        real rho = 0, wall_grad[3] = {0, 0, 0};
+        for (const DensityBoundary* b : walls) b->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
+        for (int c = 0; c < 3; ++c) d[c] += lambda[i] * inv_rho0 * wall_grad[c];
+      }
+      dpx[i] = d[0];
+      dpy[i] = d[1];
+      dpz[i] = d[2];
+    }
+#pragma omp parallel for simd schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      x[i] += dpx[i];
+      y[i] += dpy[i];
+      z[i] += dpz[i];
+    }
+  }
+
+  void velocity_update(Simulation& sim) override {
+    auto& P = sim.particles();
+    const std::size_t n = P.size();
+    const real inv_dt = real(1 / sim.timestep());
+    const real* x[3] = {P.x(), P.y(), P.z()};
+    real* v[3] = {P.vx(), P.vy(), P.vz()};
+    for (int c = 0; c < 3; ++c) {
+      const real* prev = prev_[c].data();
+      const real* xc = x[c];
+      real* vc = v[c];
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) vc[i] = (xc[i] - prev[i]) * inv_dt;
+    }
+  }
+
+ private:
+  int iterations_;
+  double epsilon_, k_;
+  int n_;
+  double dq_;
+  bool one_sided_;
+  double S0_ = 1;
+  real scorr_w_ = 1;
+  FieldId lambda_ = 0;
+  std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
+  std::vector<real> dp_[3];    // corrections of one iteration
+};
+
+}  // namespace
+
+void register_pbf(StyleRegistry& r) {
+  r.add({"pbf",
+         StyleKind::fix,
+         "Position Based Fluids density constraint and integrator (Macklin & Mueller 2013)",
+         {{"iterations", ParamType::Integer, std::int64_t{4}, "", "constraint solver iterations per step"},
+          {"epsilon", ParamType::Real, 0.01, "S0", "relaxation epsilon, relative to S0 (see docs)"},
+          {"scorr_k", ParamType::Real, 0.001, "", "artificial pressure strength k (s_corr is divided by S0)"},
+          {"scorr_n", ParamType::Integer, std::int64_t{4}, "", "artificial pressure exponent n"},
+          {"scorr_dq", ParamType::Real, 0.2, "h", "artificial pressure reference distance delta q, in units of h"},
+          {"one_sided", ParamType::Bool, true, "", "constrain only compression, C = max(rho/rho0 - 1, 0)"}},
+         [](const std::string& id, const Params& p) { return std::make_unique<PositionBasedFluid>(id, p); },
+         nullptr});
+}
+
+}  // namespace pbf

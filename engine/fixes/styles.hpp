@@ -1,0 +1,24 @@
+#pragma once
+// Each style file defines one register_<style>() function; builtin_styles.cpp calls them all.
+#include <memory>
+
+#include "engine/style_registry.hpp"
+
+namespace pbf {
+
+void register_gravity(StyleRegistry&);
+void register_pbf(StyleRegistry&);
+void register_box(StyleRegistry&);
+void register_vorticity(StyleRegistry&);
+void register_xsph(StyleRegistry&);
+void register_dump_text(StyleRegistry&);
+
+void register_compute_density(StyleRegistry&);
+void register_compute_density_error(StyleRegistry&);
+void register_compute_kinetic_energy(StyleRegistry&);
+void register_compute_speed(StyleRegistry&);
+void register_compute_count(StyleRegistry&);
+void register_compute_extent(StyleRegistry&);
+void register_compute_front(StyleRegistry&);
+
+}  // namespace pbf

@@ -1,0 +1,116 @@
+// vorticity: vorticity confinement (Fedkiw et al. 2001, as used by Macklin & Mueller 2013),
+// putting back rotation that numerical damping removes. SPH volume-weighted forms:
+//   omega_i = sum_j (m_j / rho_j) gradW_ij x (v_j - v_i)                (curl of v)
+//   eta_i   = sum_j (m_j / rho_j) (|omega_j| - |omega_i|) gradW_ij      (grad |omega|)
+//   a_i     = epsilon h |omega_i| (N_i x omega_i),  N = eta / |eta|
+// epsilon is dimensionless; the factor h makes the confinement vanish under refinement, as
+// Fedkiw's grid form does with the cell size.
+#include <cmath>
+#include <vector>
+
+#include "engine/error.hpp"
+#include "engine/fixes/styles.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class VorticityConfinement : public Fix {
+ public:
+  VorticityConfinement(const std::string& id, const Params& p) : Fix(id, "vorticity"), epsilon_(p.real("epsilon")) {
+    if (epsilon_ < 0) throw Error("parameter 'epsilon' must be >= 0");
+  }
+
+  std::vector<Stage> stages() const override { return {Stage::velocity_post}; }
+  bool needs_neighbors() const override { return true; }
+
+  void init(Simulation& sim) override {
+    omega_ = sim.particles().declare({"vorticity", 3, "vorticity, curl of the velocity (1/s)"});
+    fields_ = {"vorticity"};
+  }
+
+  void velocity_post(Simulation& sim) override {
+    const std::vector<real>& rho = sim.density();
+    auto& P = sim.particles();
+    const auto& grid = sim.neighbors();
+    const Kernels& K = sim.kernels();
+    const std::size_t n = P.size();
+    const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass();
+    real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    real *wx = P.data(omega_, 0), *wy = P.data(omega_, 1), *wz = P.data(omega_, 2);
+
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      real w[3] = {0, 0, 0};
+      const std::uint32_t* nb = grid.neighbors(i);
+      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
+        const std::uint32_t j = nb[k];
+        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+        const real g = m[j] / rho[j] * K.spiky_grad_factor(dx * dx + dy * dy + dz * dz);
+        const real gx = g * dx, gy = g * dy, gz = g * dz;
+        const real ux = vx[j] - vx[i], uy = vy[j] - vy[i], uz = vz[j] - vz[i];
+        w[0] += gy * uz - gz * uy;
+        w[1] += gz * ux - gx * uz;
+        w[2] += gx * uy - gy * ux;
+      }
+      wx[i] = w[0];
+      wy[i] = w[1];
+      wz[i] = w[2];
+    }
+
+    for (auto& c : dv_) c.resize(n);
+    const real scale = real(epsilon_ * sim.kernel_radius() * sim.timestep());
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const real wi = std::sqrt(wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i]);
+      real eta[3] = {0, 0, 0};
+      const std::uint32_t* nb = grid.neighbors(i);
+      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
+        const std::uint32_t j = nb[k];
+        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+        const real wj = std::sqrt(wx[j] * wx[j] + wy[j] * wy[j] + wz[j] * wz[j]);
+        const real g = m[j] / rho[j] * (wj - wi) * K.spiky_grad_factor(dx * dx + dy * dy + dz * dz);
+        eta[0] += g * dx;
+        eta[1] += g * dy;
+        eta[2] += g * dz;
+      }
+      const real len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
+      real a[3] = {0, 0, 0};
+      if (len > real(1e-12) * (wi / K.h + real(1e-30))) {  // no direction where |omega| is flat
+        const real s = scale * wi / len;
+        a[0] = s * (eta[1] * wz[i] - eta[2] * wy[i]);
+        a[1] = s * (eta[2] * wx[i] - eta[0] * wz[i]);
+        a[2] = s * (eta[0] * wy[i] - eta[1] * wx[i]);
+      }
+      dv_[0][i] = a[0];
+      dv_[1][i] = a[1];
+      dv_[2][i] = a[2];
+    }
+    real* v[3] = {vx, vy, vz};
+    for (int c = 0; c < 3; ++c) {
+      real* vc = v[c];
+      const real* d = dv_[c].data();
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) vc[i] += d[i];
+    }
+  }
+
+ private:
+  double epsilon_;
+  FieldId omega_ = 0;
+  std::vector<real> dv_[3];
+};
+
+}  // namespace
+
+void register_vorticity(StyleRegistry& r) {
+  r.add({"vorticity",
+         StyleKind::fix,
+         "vorticity confinement, acceleration epsilon h |omega| (N x omega)",
+         {{"epsilon", ParamType::Real, 0.05, "", "confinement strength (dimensionless)"}},
+         [](const std::string& id, const Params& p) { return std::make_unique<VorticityConfinement>(id, p); },
+         nullptr});
+}
+
+}  // namespace pbf

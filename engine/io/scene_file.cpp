@@ -1,0 +1,157 @@
+#include "engine/io/scene_file.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <spdlog/spdlog.h>
+#include <sstream>
+
+#include "engine/error.hpp"
+#include "engine/mass.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(const std::string& path) : path_(path), in_(path) {
+    if (!in_) throw Error(fmt::format("{}: cannot open scene file", path), true);
+  }
+
+  [[noreturn]] void fail(long line, const std::string& message) const {
+    throw Error(fmt::format("{}:{}: {}", path_, line, message), true);
+  }
+
+  // The next non-comment line split into tokens; false at end of file.
+  bool next_line(std::vector<std::string>& tokens) {
+    std::string text;
+    while (std::getline(in_, text)) {
+      ++line_;
+      const auto first = text.find_first_not_of(" \t\r");
+      if (first == std::string::npos || text[first] == '#') continue;
+      tokens.clear();
+      std::istringstream words(text);
+      for (std::string w; words >> w;) tokens.push_back(w);
+      return true;
+    }
+    return false;
+  }
+
+  double number(const std::string& token, const std::string& what) const {
+    const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);
+    double value = 0;
+    auto [end, ec] = std::from_chars(begin, token.data() + token.size(), value);
+    if (ec != std::errc() || end != token.data() + token.size())
+      fail(line_, fmt::format("{}: '{}' is not a number", what, token));
+    if (!std::isfinite(value)) fail(line_, fmt::format("{}: '{}' is not a finite number", what, token));
+    return value;
+  }
+
+  long line() const { return line_; }
+
+ private:
+  std::string path_;
+  std::ifstream in_;
+  long line_ = 0;
+};
+
+}  // namespace
+
+SceneFile read_scene_file(const std::string& path) {
+  Reader reader(path);
+  SceneFile scene;
+  scene.path = path;
+  static const char* header_names[6] = {"particle count N", "time step", "particle size h",
+                                        "domain side L",    "output interval", "final time"};
+  std::vector<std::string> tokens;
+  long count_line = 0;
+  int got = 0;
+  double header[6] = {0, 0, 0, 0, 0, 0};
+  while (got < 6) {
+    if (!reader.next_line(tokens))
+      reader.fail(reader.line(), fmt::format("the header ends early: missing the {} (six values: N, time step, h, "
+                                             "L, output interval, final time)",
+                                             header_names[got]));
+    for (std::size_t t = 0; t < tokens.size(); ++t) {
+      if (got == 6) reader.fail(reader.line(), fmt::format("unexpected '{}' after the six header values", tokens[t]));
+      if (got == 0) {
+        std::int64_t n = 0;
+        auto [end, ec] = std::from_chars(tokens[t].data(), tokens[t].data() + tokens[t].size(), n);
+        if (ec != std::errc() || end != tokens[t].data() + tokens[t].size())
+          reader.fail(reader.line(), fmt::format("particle count N: '{}' is not an integer", tokens[t]));
+        if (n <= 0) reader.fail(reader.line(), fmt::format("particle count N must be positive, got {}", n));
+        scene.count = n;
+        count_line = reader.line();
+      } else {
+        header[got] = reader.number(tokens[t], header_names[got]);
+        if (!(header[got] > 0))
+          reader.fail(reader.line(), fmt::format("{} must be positive, got {}", header_names[got], header[got]));
+      }
+      ++got;
+    }
+  }
+  scene.dt = header[1];
+  scene.h = header[2];
+  scene.L = header[3];
+  scene.interval = header[4];
+  scene.t_final = header[5];
+
+  // Particles: never trust N for allocation before the data confirm it.
+  std::int64_t read = 0;
+  while (reader.next_line(tokens)) {
+    if (read == scene.count)
+      reader.fail(reader.line(), fmt::format("more particle lines than the count N = {} given on line {}",
+                                             scene.count, count_line));
+    if (tokens.size() != 6)
+      reader.fail(reader.line(), fmt::format("expected 6 values (x y z vx vy vz), found {}", tokens.size()));
+    double p[6];
+    static const char* names[6] = {"x", "y", "z", "vx", "vy", "vz"};
+    for (int k = 0; k < 6; ++k) p[k] = reader.number(tokens[k], names[k]);
+    for (int k = 0; k < 3; ++k)
+      if (p[k] < 0 || p[k] > scene.L)
+        reader.fail(reader.line(), fmt::format("particle {} at ({}, {}, {}) is outside the domain [0, {}]^3", read,
+                                               p[0], p[1], p[2], scene.L));
+    scene.particles.insert(scene.particles.end(), p, p + 6);
+    ++read;
+  }
+  if (read != scene.count)
+    reader.fail(reader.line(), fmt::format("found {} particle lines, but the count N on line {} is {}", read,
+                                           count_line, scene.count));
+  return scene;
+}
+
+double load_scene(Simulation& sim, const SceneFile& scene) {
+  Domain domain;
+  for (int a = 0; a < 3; ++a) {
+    domain.lo[a] = 0;
+    domain.hi[a] = scene.L;
+  }
+  sim.set_domain(domain);
+  sim.set_kernel_radius(scene.h);
+  sim.set_timestep(scene.dt);
+  const std::size_t n = static_cast<std::size_t>(scene.count);
+  std::vector<real> x(n), y(n), z(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = real(scene.particles[6 * i]);
+    y[i] = real(scene.particles[6 * i + 1]);
+    z[i] = real(scene.particles[6 * i + 2]);
+  }
+  const MassEstimate m =
+      mass_from_positions(x.data(), y.data(), z.data(), n, domain, sim.kernels(), sim.rest_density());
+  if (m.interior == 0)
+    spdlog::warn("{}: no particle is at least h = {} from every face; mass from the nearest-neighbour spacing {:.4g}",
+                 scene.path, scene.h, m.spacing);
+  for (std::size_t i = 0; i < n; ++i) {
+    const real v[3] = {real(scene.particles[6 * i + 3]), real(scene.particles[6 * i + 4]),
+                       real(scene.particles[6 * i + 5])};
+    const real p[3] = {x[i], y[i], z[i]};
+    sim.particles().add(p, v, real(m.mass));
+  }
+  sim.positions_changed();
+  return m.mass;
+}
+
+}  // namespace pbf

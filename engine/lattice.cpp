@@ -1,0 +1,40 @@
+#include "engine/lattice.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "engine/mass.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+std::size_t add_lattice(Simulation& sim, const double lo[3], const double hi[3], double spacing,
+                        const double velocity[3]) {
+  if (!(spacing > 0) || !std::isfinite(spacing))
+    throw Error(fmt::format("lattice: spacing must be positive, got {}", spacing));
+  if (sim.kernel_radius() <= 0) throw Error("lattice: set the kernel radius (pbf.kernel_radius) first");
+  long count[3];
+  for (int a = 0; a < 3; ++a) {
+    if (!(hi[a] > lo[a])) throw Error(fmt::format("lattice: hi must exceed lo along {}", "xyz"[a]));
+    if (lo[a] < sim.domain().lo[a] || hi[a] > sim.domain().hi[a])
+      throw Error(fmt::format("lattice: region [{}, {}] along {} is not inside the domain [{}, {}]", lo[a], hi[a],
+                              "xyz"[a], sim.domain().lo[a], sim.domain().hi[a]));
+    count[a] = static_cast<long>(std::floor((hi[a] - lo[a]) / spacing + 1e-9));
+  }
+  const double total = static_cast<double>(count[0]) * static_cast<double>(count[1]) * static_cast<double>(count[2]);
+  if (total > 2e9) throw Error(fmt::format("lattice: {:.3g} particles is too many", total));
+  const real mass = real(lattice_mass(spacing, sim.kernels(), sim.rest_density()));
+  const real v[3] = {real(velocity[0]), real(velocity[1]), real(velocity[2])};
+  for (long k = 0; k < count[2]; ++k)
+    for (long j = 0; j < count[1]; ++j)
+      for (long i = 0; i < count[0]; ++i) {
+        const real p[3] = {real(lo[0] + (i + 0.5) * spacing), real(lo[1] + (j + 0.5) * spacing),
+                           real(lo[2] + (k + 0.5) * spacing)};
+        sim.particles().add(p, v, mass);
+      }
+  sim.positions_changed();
+  return static_cast<std::size_t>(total);
+}
+
+}  // namespace pbf

@@ -1,0 +1,14 @@
+#pragma once
+// Filling a box region with particles on a cubic lattice.
+#include <cstddef>
+
+namespace pbf {
+
+class Simulation;
+
+// Particles at lo + (i + 1/2) s along each axis while inside [lo, hi], with the given
+// velocity and the lattice mass rule (engine/mass.hpp). Returns how many were added.
+std::size_t add_lattice(Simulation& sim, const double lo[3], const double hi[3], double spacing,
+                        const double velocity[3]);
+
+}  // namespace pbf

@@ -1,0 +1,76 @@
+#pragma once
+// Particle data as structure-of-arrays. Every per-particle array is a declared field
+// (name, components, doc); position, velocity and mass always exist, fixes declare the
+// rest when they join a run. That one declaration lets the engine reorder, dump and
+// (later) save every field without a second list.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/real.hpp"
+
+namespace pbf {
+
+struct FieldSpec {
+  std::string name;
+  int components = 1;
+  std::string doc;
+};
+
+using FieldId = std::size_t;
+
+class Particles {
+ public:
+  static constexpr FieldId kPosition = 0, kVelocity = 1, kMass = 2;
+
+  Particles();
+
+  std::size_t size() const { return ids_.size(); }
+
+  // Appends one particle; its id is its creation index (the input order).
+  void add(const real position[3], const real velocity[3], real mass);
+
+  // Declares a field (idempotent for the same name and component count), zero-filled.
+  FieldId declare(const FieldSpec& spec);
+  std::optional<FieldId> find(const std::string& name) const;
+  const FieldSpec& spec(FieldId field) const { return fields_[field].spec; }
+  std::size_t field_count() const { return fields_.size(); }
+  // Drops every declared field whose name is not in `keep` (core fields always stay).
+  void retain_fields(const std::vector<std::string>& keep);
+
+  real* data(FieldId field, int component = 0) { return fields_[field].data[component].data(); }
+  const real* data(FieldId field, int component = 0) const { return fields_[field].data[component].data(); }
+
+  real* x() { return data(kPosition, 0); }
+  real* y() { return data(kPosition, 1); }
+  real* z() { return data(kPosition, 2); }
+  real* vx() { return data(kVelocity, 0); }
+  real* vy() { return data(kVelocity, 1); }
+  real* vz() { return data(kVelocity, 2); }
+  real* mass() { return data(kMass); }
+  const real* x() const { return data(kPosition, 0); }
+  const real* y() const { return data(kPosition, 1); }
+  const real* z() const { return data(kPosition, 2); }
+  const real* vx() const { return data(kVelocity, 0); }
+  const real* vy() const { return data(kVelocity, 1); }
+  const real* vz() const { return data(kVelocity, 2); }
+  const real* mass() const { return data(kMass); }
+  const std::int64_t* ids() const { return ids_.data(); }
+
+  // Reorders every field: particle i of the result is particle order[i] of before.
+  void permute(const std::vector<std::uint32_t>& order);
+  // index_of_id()[k]: the current index of the particle with id k.
+  std::vector<std::uint32_t> index_of_id() const;
+
+ private:
+  struct Field {
+    FieldSpec spec;
+    std::vector<std::vector<real>> data;  // one array per component
+  };
+  std::vector<Field> fields_;
+  std::vector<std::int64_t> ids_;
+};
+
+}  // namespace pbf

@@ -1,0 +1,94 @@
+#pragma once
+// The simulation: the scene (domain, kernel radius, time step, particles), the pipeline of
+// fixes and computes a script assembles, and the run loop. It knows nothing of Lua.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/compute.hpp"
+#include "engine/density_boundary.hpp"
+#include "engine/domain.hpp"
+#include "engine/fix.hpp"
+#include "engine/kernels.hpp"
+#include "engine/neighbor_grid.hpp"
+#include "engine/particles.hpp"
+#include "engine/thermo.hpp"
+#include "engine/timing.hpp"
+
+namespace pbf {
+
+class Simulation {
+ public:
+  Simulation();
+  ~Simulation();
+
+  // --- the scene ---
+  Particles& particles() { return particles_; }
+  const Particles& particles() const { return particles_; }
+  const Domain& domain() const { return domain_; }
+  void set_domain(const Domain& domain);
+  double kernel_radius() const { return h_; }
+  void set_kernel_radius(double h);
+  const Kernels& kernels() const { return kernels_; }
+  double timestep() const { return dt_; }
+  void set_timestep(double dt);
+  double rest_density() const { return rest_density_; }
+  void set_rest_density(double rho0);
+  // Steps between reorderings of particle memory along the grid (0: never).
+  void set_reorder_interval(int steps) { reorder_every_ = steps; }
+
+  std::int64_t step() const { return step_; }
+  double time() const { return time_base_ + static_cast<double>(step_ - step_base_) * dt_; }
+
+  // --- the pipeline ---
+  void add_fix(std::unique_ptr<Fix> fix);
+  void remove_fix(const std::string& id);
+  Fix* find_fix(const std::string& id) const;
+  const std::vector<std::unique_ptr<Fix>>& fixes() const { return fixes_; }
+  void add_compute(std::unique_ptr<Compute> compute);
+  void remove_compute(const std::string& id);
+  Compute* find_compute(const std::string& id) const;
+  const std::vector<std::unique_ptr<Compute>>& computes() const { return computes_; }
+  Thermo& thermo() { return thermo_; }
+
+  // Runs `steps` steps; may be called again, with the pipeline changed in between.
+  void run(std::int64_t steps);
+  const TimingTable& last_timing() const { return timing_; }
+
+  // --- services for fixes and computes ---
+  // Neighbour lists of this step's neighbour stage (built from predicted positions).
+  const NeighborGrid& neighbors() const { return grid_; }
+  // Rebuilds the lists if positions changed since they were built (for measurements).
+  void refresh_neighbors();
+  // SPH density with wall contributions, at the current positions over the current lists.
+  const std::vector<real>& density();
+  // Fixes that move particles outside the run loop's knowledge call this.
+  void positions_changed() { ++positions_version_; }
+  const std::vector<const DensityBoundary*>& density_boundaries() const { return boundaries_; }
+
+ private:
+  friend class RunLoop;
+  void check_inside_domain() const;
+  void collect_boundaries();
+
+  Particles particles_;
+  Domain domain_;
+  double h_ = 0, dt_ = 0, rest_density_ = 1000;
+  Kernels kernels_{1.0};
+  int reorder_every_ = 20;
+  std::int64_t step_ = 0, step_base_ = 0;
+  double time_base_ = 0;
+
+  std::vector<std::unique_ptr<Fix>> fixes_;
+  std::vector<std::unique_ptr<Compute>> computes_;
+  Thermo thermo_;
+  TimingTable timing_;
+
+  NeighborGrid grid_;
+  std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0;
+  std::vector<real> density_;
+  std::vector<const DensityBoundary*> boundaries_;
+};
+
+}  // namespace pbf

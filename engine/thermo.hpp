@@ -1,0 +1,38 @@
+#pragma once
+// Thermo output: every K steps one line of the columns a script asks for (step, time, dt,
+// particles, and compute values "id" or "id.name"), logged and optionally written to CSV.
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace pbf {
+
+class Simulation;
+
+class Thermo {
+ public:
+  void configure(int every, std::vector<std::string> columns, const std::string& csv_path);
+  int every() const { return every_; }
+  const std::vector<std::string>& columns() const { return columns_; }
+
+  // Every name thermo columns may use now; a column not in it is an error.
+  static std::vector<std::string> valid_columns(const Simulation& sim);
+  void check(const Simulation& sim) const;
+
+  void start_run(Simulation& sim);  // header line; a line for the current step if due
+  void end_of_step(Simulation& sim);
+  // The values of the columns now.
+  std::vector<double> values(Simulation& sim) const;
+
+ private:
+  void output(Simulation& sim);
+
+  int every_ = 0;
+  std::vector<std::string> columns_ = {"step", "time"};
+  std::string csv_path_;
+  std::ofstream csv_;
+  std::int64_t last_step_ = -1;
+};
+
+}  // namespace pbf

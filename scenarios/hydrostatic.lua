@@ -1,0 +1,41 @@
+-- hydrostatic.lua: a column of water at rest in a closed box. It should stay at rest: the
+-- column keeps its height, the density error stays small and no particle moves much. The
+-- test of the density solver and the walls under gravity.
+--
+--   pbfengine run scenarios/hydrostatic.lua [-v particles=8000] [-v t_end=2] [-v csv=FILE]
+--
+-- Variables: particles (about how many, default 8000), t_end (simulated seconds, default
+-- 2), height (column height in m, default 0.4; the footprint is height/2 square),
+-- iterations (default 4), one_sided (default true), xsph (XSPH c, default 0.01), csv (thermo CSV file, default none),
+-- out (frame directory, default none).
+local N = var.particles or 8000
+local t_end = var.t_end or 2.0
+local H = var.height or 0.4
+local W = H / 2
+local s = (W * W * H / N) ^ (1 / 3)        -- lattice spacing
+local h = 2 * s                             -- kernel radius
+s = W / math.floor(W / s + 0.5)             -- a whole number of layers across
+local dt = var.dt or 0.4 * h / math.sqrt(2 * 9.81 * H)
+
+pbf.domain{lo = {0, 0, 0}, hi = {W, W, 1.5 * H}}
+pbf.kernel_radius(h)
+pbf.timestep(dt)
+pbf.lattice{lo = {0, 0, 0}, hi = {W, W, H}, spacing = s}
+
+pbf.fix("gravity", "gravity", {})
+local one_sided = not (var.one_sided == "false" or var.one_sided == 0)
+pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, one_sided = one_sided})
+pbf.fix("walls", "box", {})
+pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
+if var.out then pbf.fix("frames", "dump/text", {dir = var.out, interval = 0.05}) end
+
+pbf.compute("err", "density_error")
+pbf.compute("ke", "kinetic_energy")
+pbf.compute("v", "speed")
+pbf.compute("top", "front", {axis = "z", percentile = 99})
+pbf.compute("box", "extent")
+pbf.thermo{every = math.max(1, math.floor(0.1 / dt)), csv = var.csv,
+           columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.max", "top", "box.zmin"}}
+
+print(string.format("hydrostatic: %d particles, spacing %.4g m, h %.4g m, dt %.4g s", pbf.count(), s, h, dt))
+pbf.run(math.ceil(t_end / dt - 1e-9))

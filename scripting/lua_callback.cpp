@@ -1,0 +1,48 @@
+#include "scripting/lua_callback.hpp"
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf::lua {
+
+namespace {
+
+class LuaCallback : public Fix {
+ public:
+  LuaCallback(lua_State* L, const std::string& id, std::int64_t every)
+      : Fix(id, "lua"), L_(L), every_(every), ref_(luaL_ref(L, LUA_REGISTRYINDEX)) {}
+  ~LuaCallback() override { luaL_unref(L_, LUA_REGISTRYINDEX, ref_); }
+
+  std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
+
+  void end_of_step(Simulation& sim) override {
+    if (sim.step() % every_ != 0) return;
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, ref_);
+    lua_pushinteger(L_, static_cast<lua_Integer>(sim.step()));
+    lua_pushnumber(L_, sim.time());
+    if (lua_pcall(L_, 2, 0, 0) != LUA_OK) {
+      std::string message = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "(error object is not a string)";
+      lua_pop(L_, 1);
+      throw Error(message, true);  // a Lua error message already says FILE:LINE
+    }
+  }
+
+ private:
+  lua_State* L_;
+  std::int64_t every_;
+  int ref_;
+};
+
+}  // namespace
+
+std::unique_ptr<Fix> make_callback_fix(lua_State* L, const std::string& id, std::int64_t every) {
+  if (every < 1) {
+    lua_pop(L, 1);
+    throw Error(fmt::format("pbf.every: the interval must be at least 1 step, got {}", every));
+  }
+  return std::make_unique<LuaCallback>(L, id, every);
+}
+
+}  // namespace pbf::lua

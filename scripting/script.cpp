@@ -1,0 +1,383 @@
+// The `pbf` table: each function reads its arguments with typed readers, calls the engine,
+// and pushes plain Lua values back. Engine errors become one Lua error "FILE:LINE: message".
+#include "scripting/script.hpp"
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <lua.hpp>
+#include <map>
+
+#include "engine/error.hpp"
+#include "engine/io/scene_file.hpp"
+#include "engine/lattice.hpp"
+#include "engine/simulation.hpp"
+#include "engine/style_registry.hpp"
+#include "scripting/lua_callback.hpp"
+#include "scripting/lua_util.hpp"
+
+namespace pbf {
+
+struct Script::State {
+  Simulation& sim;
+  lua_State* L = nullptr;
+  bool running = false;
+  std::map<std::string, bool> variable_read;
+
+  // Changing the scene or the pipeline from a callback inside a run is not allowed.
+  void not_running(const char* function) const {
+    if (running) throw Error(fmt::format("{} cannot be called during a run (from a pbf.every callback)", function));
+  }
+};
+
+namespace {
+
+using State = Script::State;
+
+State& state(lua_State* L) { return *static_cast<State*>(lua_touserdata(L, lua_upvalueindex(1))); }
+
+// Checks a table argument against a schema, like style parameters.
+Params table_arg(lua_State* L, int index, const char* function, const std::vector<ParamSpec>& schema) {
+  if (lua_type(L, index) != LUA_TTABLE) throw Error(fmt::format("{} takes a table {{name = value, ...}}", function));
+  return Params(function, schema, lua::table_params(L, index, function));
+}
+
+void push_vec3(lua_State* L, const double v[3]) {
+  lua_createtable(L, 3, 0);
+  for (int k = 0; k < 3; ++k) {
+    lua_pushnumber(L, v[k]);
+    lua_rawseti(L, -2, k + 1);
+  }
+}
+
+int l_domain(lua_State* L) {
+  State& S = state(L);
+  if (!lua_isnoneornil(L, 1)) {
+    S.not_running("pbf.domain");
+    const Params p = table_arg(L, 1, "pbf.domain",
+                               {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
+                                {"hi", ParamType::Vector3, std::nullopt, "m", ""}});
+    Domain d;
+    for (int a = 0; a < 3; ++a) {
+      d.lo[a] = p.vec3("lo")[a];
+      d.hi[a] = p.vec3("hi")[a];
+    }
+    S.sim.set_domain(d);
+  }
+  lua_createtable(L, 0, 2);
+  push_vec3(L, S.sim.domain().lo);
+  lua_setfield(L, -2, "lo");
+  push_vec3(L, S.sim.domain().hi);
+  lua_setfield(L, -2, "hi");
+  return 1;
+}
+
+// Getter/setter pairs: pbf.kernel_radius(h) sets, pbf.kernel_radius() reads.
+template <double (Simulation::*Get)() const, void (Simulation::*Set)(double)>
+int l_setting(lua_State* L) {
+  State& S = state(L);
+  if (!lua_isnoneornil(L, 1)) {
+    S.not_running("a pbf setting");
+    (S.sim.*Set)(lua::number(L, 1, "the value"));
+  }
+  lua_pushnumber(L, (S.sim.*Get)());
+  return 1;
+}
+
+int l_lattice(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.lattice");
+  const Params p = table_arg(L, 1, "pbf.lattice",
+                             {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
+                              {"hi", ParamType::Vector3, std::nullopt, "m", ""},
+                              {"spacing", ParamType::Real, std::nullopt, "m", ""},
+                              {"velocity", ParamType::Vector3, Vec3{0, 0, 0}, "m/s", ""}});
+  const Vec3 lo = p.vec3("lo"), hi = p.vec3("hi"), v = p.vec3("velocity");
+  lua_pushinteger(L, static_cast<lua_Integer>(add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data())));
+  return 1;
+}
+
+int l_read_scene(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.read_scene");
+  const SceneFile scene = read_scene_file(lua::string(L, 1, "pbf.read_scene: the path"));
+  const double mass = load_scene(S.sim, scene);
+  lua_createtable(L, 0, 7);
+  const std::pair<const char*, double> fields[] = {{"dt", scene.dt},         {"h", scene.h},
+                                                   {"L", scene.L},           {"interval", scene.interval},
+                                                   {"t_final", scene.t_final}, {"mass", mass}};
+  for (const auto& [name, value] : fields) {
+    lua_pushnumber(L, value);
+    lua_setfield(L, -2, name);
+  }
+  lua_pushinteger(L, static_cast<lua_Integer>(scene.count));
+  lua_setfield(L, -2, "count");
+  return 1;
+}
+
+int l_fix(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.fix");
+  const std::string id = lua::string(L, 1, "pbf.fix: the id");
+  const std::string style = lua::string(L, 2, "pbf.fix: the style");
+  S.sim.add_fix(StyleRegistry::builtin().make_fix(id, style, lua::table_params(L, 3, "pbf.fix: the parameters")));
+  return 0;
+}
+
+int l_unfix(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.unfix");
+  S.sim.remove_fix(lua::string(L, 1, "pbf.unfix: the id"));
+  return 0;
+}
+
+int l_compute(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.compute");
+  const std::string id = lua::string(L, 1, "pbf.compute: the id");
+  const std::string style = lua::string(L, 2, "pbf.compute: the style");
+  S.sim.add_compute(
+      StyleRegistry::builtin().make_compute(id, style, lua::table_params(L, 3, "pbf.compute: the parameters")));
+  return 0;
+}
+
+int l_uncompute(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.uncompute");
+  S.sim.remove_compute(lua::string(L, 1, "pbf.uncompute: the id"));
+  return 0;
+}
+
+int l_value(lua_State* L) {
+  State& S = state(L);
+  const std::string id = lua::string(L, 1, "pbf.value: the compute id");
+  Compute* c = S.sim.find_compute(id);
+  if (!c) throw Error(fmt::format("pbf.value: no compute with id '{}'", id));
+  std::vector<double> v;
+  if (c->per_particle()) {
+    c->evaluate_per_particle(S.sim, v);
+    lua_createtable(L, static_cast<int>(v.size()), 0);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      lua_pushnumber(L, v[i]);
+      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    return 1;
+  }
+  c->evaluate(S.sim, v);
+  const auto names = c->names();
+  if (names.size() == 1) {
+    lua_pushnumber(L, v.at(0));
+    return 1;
+  }
+  lua_createtable(L, 0, static_cast<int>(names.size()));
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    lua_pushnumber(L, v.at(k));
+    lua_setfield(L, -2, names[k].c_str());
+  }
+  return 1;
+}
+
+int l_thermo(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.thermo");
+  if (lua_type(L, 1) != LUA_TTABLE) throw Error("pbf.thermo takes a table {every = K, columns = {...}, csv = PATH}");
+  std::int64_t every = 100;
+  std::vector<std::string> columns = {"step", "time"};
+  std::string csv;
+  lua_pushnil(L);
+  while (lua_next(L, 1)) {
+    const std::string key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "?";
+    if (key == "every") every = lua::integer(L, -1, "pbf.thermo: 'every'");
+    else if (key == "csv") csv = lua::string(L, -1, "pbf.thermo: 'csv'");
+    else if (key == "columns") {
+      if (lua_type(L, -1) != LUA_TTABLE) throw Error("pbf.thermo: 'columns' must be a list of names");
+      columns.clear();
+      for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, -1)); ++k) {
+        lua_rawgeti(L, -1, k);
+        columns.push_back(lua::string(L, -1, "pbf.thermo: a column"));
+        lua_pop(L, 1);
+      }
+    } else {
+      throw Error(fmt::format("pbf.thermo: unknown key '{}'; valid keys: every, columns, csv", key));
+    }
+    lua_pop(L, 1);
+  }
+  if (every > 1000000000) throw Error("pbf.thermo: 'every' is too large");
+  S.sim.thermo().configure(static_cast<int>(every), columns, csv);
+  S.sim.thermo().check(S.sim);
+  return 0;
+}
+
+int l_every(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.every");
+  const std::string id = lua::string(L, 1, "pbf.every: the id");
+  const std::int64_t every = lua::integer(L, 2, "pbf.every: the interval in steps");
+  if (lua_type(L, 3) != LUA_TFUNCTION) throw Error("pbf.every: the third argument must be a function");
+  lua_pushvalue(L, 3);
+  S.sim.add_fix(lua::make_callback_fix(L, id, every));
+  return 0;
+}
+
+int l_run(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.run");
+  const std::int64_t steps = lua::integer(L, 1, "pbf.run: the number of steps");
+  struct Running {
+    bool& flag;
+    ~Running() { flag = false; }
+  } guard{S.running};
+  S.running = true;
+  S.sim.run(steps);
+  return 0;
+}
+
+int l_step(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(state(L).sim.step()));
+  return 1;
+}
+int l_time(lua_State* L) {
+  lua_pushnumber(L, state(L).sim.time());
+  return 1;
+}
+int l_count(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(state(L).sim.particles().size()));
+  return 1;
+}
+
+int l_timing(lua_State* L) {
+  const TimingTable& t = state(L).sim.last_timing();
+  lua_createtable(L, 0, 4);
+  lua_pushnumber(L, t.wall_seconds);
+  lua_setfield(L, -2, "wall");
+  lua_pushnumber(L, t.wall_seconds > 0 ? double(t.steps) * double(t.particles) / t.wall_seconds : 0.0);
+  lua_setfield(L, -2, "particle_steps_per_second");
+  lua_createtable(L, static_cast<int>(t.rows().size()), 0);
+  for (std::size_t r = 0; r < t.rows().size(); ++r) {
+    lua_createtable(L, 0, 3);
+    lua_pushstring(L, t.rows()[r].stage.c_str());
+    lua_setfield(L, -2, "stage");
+    lua_pushstring(L, t.rows()[r].label.c_str());
+    lua_setfield(L, -2, "label");
+    lua_pushnumber(L, t.rows()[r].seconds);
+    lua_setfield(L, -2, "seconds");
+    lua_rawseti(L, -2, static_cast<lua_Integer>(r + 1));
+  }
+  lua_setfield(L, -2, "rows");
+  return 1;
+}
+
+// var: reads go through __index so the engine can warn about variables never read.
+int l_var_index(lua_State* L) {
+  State& S = state(L);
+  if (lua_type(L, 2) == LUA_TSTRING) {
+    auto it = S.variable_read.find(lua_tostring(L, 2));
+    if (it != S.variable_read.end()) it->second = true;
+  }
+  lua_pushvalue(L, 2);
+  lua_rawget(L, lua_upvalueindex(2));
+  return 1;
+}
+
+int l_var_pairs(lua_State* L) {
+  for (auto& entry : state(L).variable_read) entry.second = true;
+  lua_getglobal(L, "next");
+  lua_pushvalue(L, lua_upvalueindex(2));
+  lua_pushnil(L);
+  return 3;
+}
+
+}  // namespace
+
+Script::Script(Simulation& sim) : state_(new State{sim}) {
+  lua_State* L = luaL_newstate();
+  if (!L) throw Error("cannot create a Lua state (out of memory)");
+  state_->L = L;
+  luaL_openlibs(L);
+  const luaL_Reg functions[] = {
+      {"domain", lua::guarded<l_domain>},
+      {"kernel_radius", lua::guarded<l_setting<&Simulation::kernel_radius, &Simulation::set_kernel_radius>>},
+      {"timestep", lua::guarded<l_setting<&Simulation::timestep, &Simulation::set_timestep>>},
+      {"rest_density", lua::guarded<l_setting<&Simulation::rest_density, &Simulation::set_rest_density>>},
+      {"lattice", lua::guarded<l_lattice>},
+      {"read_scene", lua::guarded<l_read_scene>},
+      {"fix", lua::guarded<l_fix>},
+      {"unfix", lua::guarded<l_unfix>},
+      {"compute", lua::guarded<l_compute>},
+      {"uncompute", lua::guarded<l_uncompute>},
+      {"value", lua::guarded<l_value>},
+      {"thermo", lua::guarded<l_thermo>},
+      {"every", lua::guarded<l_every>},
+      {"run", lua::guarded<l_run>},
+      {"step", lua::guarded<l_step>},
+      {"time", lua::guarded<l_time>},
+      {"count", lua::guarded<l_count>},
+      {"timing", lua::guarded<l_timing>},
+      {nullptr, nullptr}};
+  lua_newtable(L);
+  lua_pushlightuserdata(L, state_.get());
+  luaL_setfuncs(L, functions, 1);
+  lua_pushstring(L, PBF_VERSION);
+  lua_setfield(L, -2, "version");
+  lua_setglobal(L, "pbf");
+  set_variables({});
+}
+
+Script::~Script() { lua_close(state_->L); }
+
+void Script::set_variables(const std::vector<std::pair<std::string, std::string>>& variables) {
+  lua_State* L = state_->L;
+  state_->variable_read.clear();
+  lua_newtable(L);  // the values
+  for (const auto& [name, text] : variables) {
+    if (lua_stringtonumber(L, text.c_str()) == 0) lua_pushstring(L, text.c_str());  // integers stay integers
+    lua_setfield(L, -2, name.c_str());
+    state_->variable_read[name] = false;
+  }
+  const int values = lua_gettop(L);
+  lua_newtable(L);                  // var: an empty proxy
+  lua_createtable(L, 0, 3);         // its metatable
+  lua_pushlightuserdata(L, state_.get());
+  lua_pushvalue(L, values);
+  lua_pushcclosure(L, l_var_index, 2);
+  lua_setfield(L, -2, "__index");
+  lua_pushlightuserdata(L, state_.get());
+  lua_pushvalue(L, values);
+  lua_pushcclosure(L, l_var_pairs, 2);
+  lua_setfield(L, -2, "__pairs");
+  lua_pushvalue(L, values);
+  lua_setfield(L, -2, "__newindex");
+  lua_setmetatable(L, -2);
+  lua_setglobal(L, "var");
+  lua_pop(L, 1);
+}
+
+void Script::run_file(const std::string& path) {
+  lua_State* L = state_->L;
+  if (!std::filesystem::is_regular_file(path)) throw Error(fmt::format("{}: cannot open the script", path), true);
+  // Lua shortens long chunk names in its messages; find that short form to put the path back.
+  const std::string chunk = "@" + path;
+  lua_Debug ar;
+  luaL_loadbuffer(L, "return", 6, chunk.c_str());
+  lua_getinfo(L, ">S", &ar);
+  const std::string short_src = ar.short_src;
+  auto full_path = [&](std::string message) {
+    if (short_src != path && message.rfind(short_src + ":", 0) == 0) message = path + message.substr(short_src.size());
+    return message;
+  };
+  int status = luaL_loadfilex(L, path.c_str(), "t");
+  if (status == LUA_OK) status = lua_pcall(L, 0, 0, 0);
+  if (status != LUA_OK) {
+    std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error object is not a string";
+    lua_pop(L, 1);
+    throw Error(full_path(message), true);
+  }
+}
+
+std::vector<std::string> Script::unread_variables() const {
+  std::vector<std::string> unread;
+  for (const auto& [name, read] : state_->variable_read)
+    if (!read) unread.push_back(name);
+  return unread;
+}
+
+}  // namespace pbf

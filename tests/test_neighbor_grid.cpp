@@ -1,0 +1,125 @@
+// The neighbour grid against brute force: random, clustered (every particle in one cell),
+// boundary-hugging and out-of-box particle sets, at 1 and 2 threads; and the cell cap.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "engine/neighbor_grid.hpp"
+
+using namespace pbf;
+
+namespace {
+
+struct Cloud {
+  std::vector<real> x, y, z;
+  void add(double a, double b, double c) {
+    x.push_back(real(a));
+    y.push_back(real(b));
+    z.push_back(real(c));
+  }
+};
+
+void expect_matches_brute_force(const Cloud& p, const Domain& d, double h, int threads) {
+  omp_set_num_threads(threads);
+  NeighborGrid grid;
+  grid.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), d, h);
+  grid.build_lists(p.x.data(), p.y.data(), p.z.data(), h);
+  const real h2 = real(h * h);
+  std::size_t pairs = 0;
+  for (std::size_t i = 0; i < p.x.size(); ++i) {
+    std::vector<std::uint32_t> expected;
+    for (std::size_t j = 0; j < p.x.size(); ++j) {
+      const real dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j], dz = p.z[i] - p.z[j];
+      if (j != i && dx * dx + dy * dy + dz * dz < h2) expected.push_back(static_cast<std::uint32_t>(j));
+    }
+    std::vector<std::uint32_t> got(grid.neighbors(i), grid.neighbors(i) + grid.count(i));
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, expected) << "particle " << i << " at " << threads << " thread(s)";
+    pairs += expected.size();
+  }
+  EXPECT_GT(pairs, 0u);  // the set must exercise the lists
+}
+
+Domain unit_box() {
+  Domain d;
+  for (int a = 0; a < 3; ++a) d.lo[a] = 0, d.hi[a] = 1;
+  return d;
+}
+
+}  // namespace
+
+class GridThreads : public ::testing::TestWithParam<int> {
+ protected:
+  void TearDown() override { omp_set_num_threads(omp_get_num_procs()); }
+};
+
+TEST_P(GridThreads, RandomParticles) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(0, 1);
+  Cloud p;
+  for (int i = 0; i < 3000; ++i) p.add(u(rng), u(rng), u(rng));
+  expect_matches_brute_force(p, unit_box(), 0.07, GetParam());
+}
+
+TEST_P(GridThreads, EveryParticleInOneCell) {
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(0.50, 0.52);
+  Cloud p;
+  for (int i = 0; i < 800; ++i) p.add(u(rng), u(rng), u(rng));
+  expect_matches_brute_force(p, unit_box(), 0.1, GetParam());
+}
+
+TEST_P(GridThreads, ParticlesOnCellAndDomainFaces) {
+  // A lattice whose spacing is the cell size: every particle on cell faces, many on the
+  // domain faces, and pairs at exactly distance h (which are not neighbours).
+  Cloud p;
+  const double h = 0.1;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j)
+      for (int k = 0; k <= 3; ++k) p.add(i * h, j * h, k * h);
+  for (int i = 0; i < 50; ++i) p.add(0.0, 0.02 * i, 1.0);  // hugging faces and an edge
+  expect_matches_brute_force(p, unit_box(), h, GetParam());
+}
+
+TEST_P(GridThreads, PredictedPositionsOutsideTheBox) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.2, 1.2);
+  Cloud p;
+  for (int i = 0; i < 2000; ++i) p.add(u(rng), u(rng), u(rng));
+  expect_matches_brute_force(p, unit_box(), 0.08, GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(OneAndTwoThreads, GridThreads, ::testing::Values(1, 2));
+
+TEST(NeighborGrid, SameListsInTheSameOrderAtAnyThreadCount) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0, 1);
+  Cloud p;
+  for (int i = 0; i < 5000; ++i) p.add(u(rng), u(rng), u(rng));
+  std::vector<std::vector<std::uint32_t>> lists[2];
+  for (int t : {1, 2}) {
+    omp_set_num_threads(t);
+    NeighborGrid grid;
+    grid.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), unit_box(), 0.06);
+    grid.build_lists(p.x.data(), p.y.data(), p.z.data(), 0.06);
+    for (std::size_t i = 0; i < p.x.size(); ++i)
+      lists[t - 1].emplace_back(grid.neighbors(i), grid.neighbors(i) + grid.count(i));
+  }
+  omp_set_num_threads(omp_get_num_procs());
+  EXPECT_EQ(lists[0], lists[1]);
+}
+
+TEST(NeighborGrid, CellCountIsCappedInAHugeBox) {
+  Domain d;
+  for (int a = 0; a < 3; ++a) d.lo[a] = 0, d.hi[a] = 1000;  // (1000 / 0.01)^3 = 1e15 cells uncapped
+  Cloud p;
+  for (int i = 0; i < 100; ++i) p.add(500 + 0.004 * i, 500, 500);
+  NeighborGrid grid;
+  grid.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), d, 0.01);
+  EXPECT_LE(grid.cell_count(), NeighborGrid::max_cells(p.x.size()));
+  expect_matches_brute_force(p, d, 0.01, 2);
+  omp_set_num_threads(omp_get_num_procs());
+}

@@ -1,0 +1,80 @@
+// Style parameters are checked against each style's schema when a fix or compute is made.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/error.hpp"
+#include "engine/style_registry.hpp"
+
+using namespace pbf;
+
+namespace {
+
+std::string error_of(const std::string& style, const GivenParams& given) {
+  try {
+    StyleRegistry::builtin().make_fix("f", style, given);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Params, UnknownStyleListsTheValidOnes) {
+  const std::string e = error_of("gravityy", {});
+  EXPECT_NE(e.find("unknown fix style 'gravityy'"), std::string::npos) << e;
+  EXPECT_NE(e.find("pbf"), std::string::npos) << e;
+  EXPECT_NE(e.find("dump/text"), std::string::npos) << e;
+}
+
+TEST(Params, UnknownParameterListsTheValidOnes) {
+  const std::string e = error_of("pbf", {{"iteration", std::int64_t{3}}});
+  EXPECT_NE(e.find("fix 'f' (pbf): unknown parameter 'iteration'"), std::string::npos) << e;
+  EXPECT_NE(e.find("iterations"), std::string::npos) << e;
+  EXPECT_NE(e.find("scorr_k"), std::string::npos) << e;
+}
+
+TEST(Params, IllTypedValuesAreRefused) {
+  EXPECT_NE(error_of("pbf", {{"iterations", std::string("four")}}).find("must be a integer"), std::string::npos);
+  EXPECT_NE(error_of("pbf", {{"iterations", 2.5}}).find("'iterations'"), std::string::npos);
+  EXPECT_NE(error_of("gravity", {{"acceleration", 9.81}}).find("must be a vector"), std::string::npos);
+  EXPECT_NE(error_of("pbf", {{"one_sided", std::int64_t{1}}}).find("must be a boolean"), std::string::npos);
+  EXPECT_NE(error_of("dump/text", {{"dir", 3.0}}).find("must be a string"), std::string::npos);
+}
+
+TEST(Params, IntegralNumbersAreIntegersAndIntegersAreNumbers) {
+  EXPECT_EQ(error_of("pbf", {{"iterations", 3.0}}), "");
+  EXPECT_EQ(error_of("xsph", {{"c", std::int64_t{0}}}), "");
+}
+
+TEST(Params, RangeChecksNameTheFix) {
+  const std::string e = error_of("pbf", {{"iterations", std::int64_t{0}}});
+  EXPECT_NE(e.find("fix 'f' (pbf): parameter 'iterations' must be in 1..1000"), std::string::npos) << e;
+  EXPECT_NE(error_of("dump/text", {}).find("exactly one of 'interval'"), std::string::npos);
+  EXPECT_NE(error_of("box", {{"restitution", 1.5}}).find("restitution"), std::string::npos);
+}
+
+TEST(Params, NonFiniteValuesAreRefused) {
+  EXPECT_NE(error_of("xsph", {{"c", std::nan("")}}).find("finite"), std::string::npos);
+}
+
+TEST(Params, DefaultsFillWhatIsNotGiven) {
+  const StyleInfo* info = StyleRegistry::builtin().find("pbf");
+  ASSERT_NE(info, nullptr);
+  Params p("pbf", info->params, {{"iterations", std::int64_t{7}}});
+  EXPECT_EQ(p.integer("iterations"), 7);
+  EXPECT_DOUBLE_EQ(p.real("epsilon"), 0.01);
+  EXPECT_TRUE(p.boolean("one_sided"));
+}
+
+TEST(Params, HelpListsEveryStyleAndEveryParameter) {
+  const auto& r = StyleRegistry::builtin();
+  const std::string all = r.help();
+  for (const auto& s : r.styles()) {
+    EXPECT_NE(all.find(s.name), std::string::npos) << s.name;
+    const std::string one = r.help(s.name);
+    for (const auto& p : s.params) EXPECT_NE(one.find(p.name), std::string::npos) << s.name << "." << p.name;
+  }
+  EXPECT_THROW(r.help("no_such_style"), Error);
+}

@@ -1,0 +1,53 @@
+#pragma once
+// Helpers shared by the tests: run the pbfengine binary, make temporary directories.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace pbf::test {
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs `pbfengine ARGS` (a shell word list) and captures everything it prints.
+inline Result run_engine(const std::string& args) {
+  const std::string command = std::string(PBF_BINARY) + " " + args + " 2>&1";
+  Result r{-1, ""};
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+inline std::string scenario(const std::string& name) { return std::string(PBF_SOURCE_DIR) + "/scenarios/" + name; }
+
+// A fresh, empty directory under the system's temporary directory.
+inline std::filesystem::path temp_dir(const std::string& name) {
+  static std::mt19937_64 rng(std::random_device{}());
+  auto dir = std::filesystem::temp_directory_path() / ("pbf-test-" + name + "-" + std::to_string(rng() % 1000000000));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+inline std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace pbf::test
