@@ -288,7 +288,7 @@ int l_var_pairs(lua_State* L) {
 
 }  // namespace
 
-Script::Script(Simulation& sim) : state_(new State{sim}) {
+Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}}) {
   lua_State* L = luaL_newstate();
   if (!L) throw Error("cannot create a Lua state (out of memory)");
   state_->L = L;
@@ -322,7 +322,14 @@ Script::Script(Simulation& sim) : state_(new State{sim}) {
   set_variables({});
 }
 
-Script::~Script() { lua_close(state_->L); }
+Script::~Script() {
+  // Scripted fixes hold references into this Lua state: they go before it closes.
+  std::vector<std::string> scripted;
+  for (const auto& f : state_->sim.fixes())
+    if (f->style() == "lua") scripted.push_back(f->id());
+  for (const auto& id : scripted) state_->sim.remove_fix(id);
+  lua_close(state_->L);
+}
 
 void Script::set_variables(const std::vector<std::pair<std::string, std::string>>& variables) {
   lua_State* L = state_->L;

@@ -16,9 +16,10 @@ struct Result {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `pbfengine ARGS` (a shell word list) and captures everything it prints.
-inline Result run_engine(const std::string& args) {
-  const std::string command = std::string(PBF_BINARY) + " " + args + " 2>&1";
+// Runs `pbfengine ARGS` (a shell word list) and captures what it prints (by default
+// stdout and stderr together).
+inline Result run_engine(const std::string& args, const std::string& redirect = "2>&1") {
+  const std::string command = std::string(PBF_BINARY) + " " + args + " " + redirect;
   Result r{-1, ""};
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;

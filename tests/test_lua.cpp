@@ -1,0 +1,178 @@
+// The command line and the Lua binding: errors as one line "FILE:LINE: message" with exit
+// code 1, -v variables, callbacks, computes read from Lua, runs that continue.
+#include <gtest/gtest.h>
+
+#include "test_util.hpp"
+
+using pbf::test::run_engine;
+using pbf::test::scenario;
+
+namespace {
+
+struct Script {
+  std::filesystem::path dir, path;
+  explicit Script(const std::string& body, const std::string& name = "script.lua") {
+    dir = pbf::test::temp_dir("lua");
+    path = dir / name;
+    pbf::test::write_file(path, body);
+  }
+};
+
+// A small scene most scripts start from (lines 1-5).
+const std::string kScene =
+    "pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}\n"
+    "pbf.kernel_radius(0.02)\n"
+    "pbf.timestep(0.002)\n"
+    "pbf.lattice{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}, spacing = 0.01}\n"
+    "pbf.fix('pbf', 'pbf', {})\n";
+
+}  // namespace
+
+TEST(Lua, SyntaxErrorNamesFileAndLine) {
+  Script s("local x = 1\npbf.fix('a', 'gravity'\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":3:"), std::string::npos) << r.output;
+}
+
+TEST(Lua, RuntimeErrorNamesFileAndLine) {
+  Script s("local x = 1\n\nerror('boom')\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":3: boom"), std::string::npos) << r.output;
+}
+
+TEST(Lua, LongPathsAreNotShortened) {
+  Script s("\nerror('boom')\n", std::string(80, 'x') + ".lua");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_NE(r.output.find(s.path.string() + ":2: boom"), std::string::npos) << r.output;
+}
+
+TEST(Lua, EngineErrorsCarryTheScriptLine) {
+  Script s(kScene + "pbf.fix('g', 'gravity', {accel = {0, 0, -1}})\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":6: fix 'g' (gravity): unknown parameter 'accel'; valid parameters: "
+                                            "acceleration"),
+            std::string::npos)
+      << r.output;
+  Script u(kScene + "\npbf.compute('x', 'no_such', {})\n");
+  r = run_engine("run " + u.path.string());
+  EXPECT_NE(r.output.find(u.path.string() + ":7: unknown compute style 'no_such'; valid compute styles: density"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(Lua, ErrorIsOneLineOnStderr) {
+  Script s("error('boom')\n");
+  auto r = run_engine("run " + s.path.string(), "2>/dev/null");
+  EXPECT_EQ(r.output, "");  // nothing on stdout
+  r = run_engine("run " + s.path.string(), "2>&1 1>/dev/null");
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(Lua, VariablesConvertAsLuaNumerals) {
+  Script s("print(math.type(var.i), math.type(var.f), math.type(var.e), type(var.s), var.s)\n");
+  auto r = run_engine("run " + s.path.string() + " -v i=3 -v f=2.5 -v e=1e3 -v s=abc");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("integer\tfloat\tfloat\tstring\tabc"), std::string::npos) << r.output;
+}
+
+TEST(Lua, UnreadVariablesGetAWarning) {
+  Script s("local x = var.used\n");
+  auto r = run_engine("run " + s.path.string() + " -v used=1 -v typo=2");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.output.find("warning: variable 'typo' given with -v was never read"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("'used'"), std::string::npos) << r.output;
+}
+
+TEST(Lua, BadCommandLinesExitWithTwo) {
+  EXPECT_EQ(run_engine("run").code, 2);
+  EXPECT_EQ(run_engine("frobnicate").code, 2);
+  EXPECT_EQ(run_engine("run x.lua --threads 0").code, 2);
+  EXPECT_EQ(run_engine("run x.lua -v novalue").code, 2);
+  EXPECT_EQ(run_engine("help").code, 0);
+  EXPECT_NE(run_engine("help no_such_style").code, 0);
+  EXPECT_EQ(run_engine("--version").code, 0);
+}
+
+TEST(Lua, MissingScriptIsAnError) {
+  auto r = run_engine("run /nonexistent/x.lua");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("/nonexistent/x.lua: cannot open"), std::string::npos);
+}
+
+TEST(Lua, ComputesAreReadableAndCallbacksRun) {
+  Script s(kScene +
+           "pbf.compute('n', 'count')\n"
+           "pbf.compute('box', 'extent')\n"
+           "pbf.compute('rho', 'density')\n"
+           "assert(pbf.value('n') == 1000 and pbf.count() == 1000)\n"
+           "assert(math.abs(pbf.value('box').xmax - 0.095) < 1e-12)\n"
+           "assert(#pbf.value('rho') == 1000)\n"
+           "local calls = 0\n"
+           "pbf.every('count', 5, function(step, time) calls = calls + 1; assert(step % 5 == 0) end)\n"
+           "pbf.run(20)\n"
+           "assert(calls == 4, calls)\n"
+           "assert(pbf.step() == 20 and math.abs(pbf.time() - 0.04) < 1e-15)\n"
+           "print('done')\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("done"), std::string::npos);
+}
+
+TEST(Lua, ErrorInACallbackNamesTheCallbackLine) {
+  Script s(kScene + "pbf.every('cb', 2, function(step)\n  if step == 4 then error('stop here') end\nend)\npbf.run(10)\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":7: stop here"), std::string::npos) << r.output;
+}
+
+TEST(Lua, RunsContinueAcrossCallsWithoutRepeatingFrames) {
+  Script s(kScene + "pbf.fix('walls', 'box', {})\npbf.fix('d', 'dump/text', {dir = var.out, every = 5})\n"
+                    "pbf.run(5)\npbf.run(5)\npbf.unfix('walls')\npbf.fix('walls', 'box', {friction = 1})\npbf.run(5)\n");
+  const auto out = s.dir / "frames";
+  auto r = run_engine("run " + s.path.string() + " -v out=" + out.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  for (int k = 0; k < 4; ++k) EXPECT_TRUE(std::filesystem::exists(out / ("frame_0000" + std::to_string(k) + ".txt")));
+  EXPECT_FALSE(std::filesystem::exists(out / "frame_00004.txt"));
+}
+
+TEST(Lua, ABlowUpNamesStepParticleAndFix) {
+  Script s(kScene + "pbf.fix('g', 'gravity', {acceleration = {0, 0, -1e308}})\npbf.timestep(100)\npbf.run(3)\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":8: step 1: the simulation blew up: particle 0 has a non-finite"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("after fix 'g' (gravity) in stage external_forces"), std::string::npos) << r.output;
+}
+
+TEST(Lua, LeavingTheDomainIsAnError) {
+  Script s("pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}\npbf.kernel_radius(0.02)\npbf.timestep(0.01)\n"
+           "pbf.lattice{lo = {0.1, 0.1, 0.1}, hi = {0.12, 0.12, 0.12}, spacing = 0.01, velocity = {1, 0, 0}}\n"
+           "pbf.fix('pbf', 'pbf', {})\npbf.run(20)\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(":6: step 9: particle 1 at"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("is outside the domain"), std::string::npos) << r.output;
+}
+
+TEST(InitFile, SceneErrorsNameTheSceneFileNotTheScript) {
+  const auto dir = pbf::test::temp_dir("init");
+  pbf::test::write_file(dir / "bad.txt", "2\n0.002\n0.04\n0.4\n0.01\n0.03\n0.1 0.1 0.1 0 0 0\n0.1 0.1 x 0 0 0\n");
+  auto r = run_engine("run " + scenario("init_file.lua") + " -v init=" + (dir / "bad.txt").string() + " -v out=" +
+                      (dir / "o").string());
+  EXPECT_EQ(r.code, 1);
+  const std::string expected = (dir / "bad.txt").string() + ":8: z: 'x' is not a number";
+  EXPECT_EQ(r.output.substr(r.output.find(expected) == std::string::npos ? 0 : r.output.find(expected)),
+            expected + "\n")
+      << r.output;
+}
+
+TEST(InitFile, MissingInitVariableIsNamed) {
+  auto r = run_engine("run " + scenario("init_file.lua"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("init_file.lua:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("missing variable 'init'"), std::string::npos) << r.output;
+}
