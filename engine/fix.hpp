@@ -31,7 +31,7 @@ class Fix {
   virtual int constraint_iterations() const { return 0; }
   virtual bool needs_neighbors() const { return false; }
   // Walls that add to the density the solver sees (nullptr: none).
-  virtual const DensityBoundary* density_boundary() const { return nullptr; }
+  virtual DensityBoundary* density_boundary() { return nullptr; }
 
   // Start of every run: declare fields, precompute constants, write initial output.
   virtual void init(Simulation&) {}

@@ -73,12 +73,18 @@ MassEstimate mass_from_positions(const real* x, const real* y, const real* z, st
   NeighborGrid grid;
   grid.bin(x, y, z, n, domain, h);
   grid.build_lists(x, y, z, h);
-  auto interior = [&](std::size_t i) {
+  auto away_from_faces = [&](std::size_t i) {
     const double p[3] = {x[i], y[i], z[i]};
     for (int a = 0; a < 3; ++a)
       if (p[a] - domain.lo[a] < h || domain.hi[a] - p[a] < h) return false;
     return true;
   };
+  // A full neighbourhood: away from the domain's faces and not at the fluid's own surface,
+  // that is with (nearly) as many neighbours as the best-surrounded particle.
+  std::uint32_t most = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (away_from_faces(i)) most = std::max(most, grid.count(i));
+  auto interior = [&](std::size_t i) { return away_from_faces(i) && grid.count(i) >= 0.95 * most; };
   auto kernel_sum = [&](std::size_t i) {
     double s = kernels.poly6(0);
     for (std::uint32_t k = 0; k < grid.count(i); ++k) {

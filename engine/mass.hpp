@@ -18,9 +18,11 @@ struct MassEstimate {
   double spacing;         // median nearest-neighbour distance (fallback rule)
 };
 
-// For particles read from a file: rho0 / mean(sum_j W) over particles at least h from every
-// face of the domain; without such particles, rho0 times the cube of the median
-// nearest-neighbour spacing (h/2 for a single particle).
+// For particles read from a file: rho0 / mean(sum_j W) over the particles with a full
+// neighbourhood (at least h from every face of the domain, and at least 95% as many
+// neighbours as the best-surrounded such particle, which leaves out the fluid's own free
+// surface); without such particles, rho0 times the cube of the median nearest-neighbour
+// spacing (h/2 for a single particle).
 MassEstimate mass_from_positions(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain,
                                  const Kernels& kernels, double rest_density);
 

@@ -86,7 +86,7 @@ Params::Params(const std::string& what, const std::vector<ParamSpec>& schema, co
     if (values_.count(name)) throw Error(fmt::format("{}: parameter '{}' given twice", what, name));
     auto converted = coerce(value, spec->type);
     if (!converted)
-      throw Error(fmt::format("{}: parameter '{}' must be a {}, got {} {}", what, name, type_name(spec->type),
+      throw Error(fmt::format("{}: parameter '{}' must be of type {}, got {} {}", what, name, type_name(spec->type),
                               given_type(value), format_value(value)));
     if (auto* d = std::get_if<double>(&*converted); d && !std::isfinite(*d))
       throw Error(fmt::format("{}: parameter '{}' must be finite, got {}", what, name, *d));

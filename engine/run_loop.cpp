@@ -72,7 +72,7 @@ void RunLoop::prepare() {
     }
 
   // Timing rows in step order, the engine's own work where it happens.
-  timing_.clear();
+  timing_ = TimingTable();
   for (int s = 0; s < kStageCount; ++s) {
     const char* stage = stage_name(static_cast<Stage>(s));
     if (static_cast<Stage>(s) == Stage::neighbors && neighbors_) {

@@ -50,7 +50,7 @@ void Simulation::add_fix(std::unique_ptr<Fix> fix) {
 void Simulation::collect_boundaries() {
   boundaries_.clear();
   for (const auto& f : fixes_)
-    if (const DensityBoundary* b = f->density_boundary()) boundaries_.push_back(b);
+    if (DensityBoundary* b = f->density_boundary()) boundaries_.push_back(b);
   positions_changed();  // the density the cache holds may have changed
 }
 
@@ -101,6 +101,7 @@ const std::vector<real>& Simulation::density() {
   density_.resize(n);
   const real *x = particles_.x(), *y = particles_.y(), *z = particles_.z(), *m = particles_.mass();
   const Kernels& K = kernels_;
+  for (DensityBoundary* b : boundaries_) b->prepare(*this);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     real rho = m[i] * K.poly6(0);

@@ -65,7 +65,7 @@ class Simulation {
   const std::vector<real>& density();
   // Fixes that move particles outside the run loop's knowledge call this.
   void positions_changed() { ++positions_version_; }
-  const std::vector<const DensityBoundary*>& density_boundaries() const { return boundaries_; }
+  const std::vector<DensityBoundary*>& density_boundaries() const { return boundaries_; }
 
  private:
   friend class RunLoop;
@@ -88,7 +88,7 @@ class Simulation {
   NeighborGrid grid_;
   std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0;
   std::vector<real> density_;
-  std::vector<const DensityBoundary*> boundaries_;
+  std::vector<DensityBoundary*> boundaries_;
 };
 
 }  // namespace pbf

@@ -100,7 +100,7 @@ std::string StyleRegistry::markdown_reference() const {
       out += "| parameter | type | default | unit | meaning |\n|---|---|---|---|---|\n";
       for (const auto& p : s.params)
         out += fmt::format("| `{}` | {} | {} | {} | {} |\n", p.name, type_name(p.type),
-                           p.default_value ? "`" + format_value(*p.default_value) + "`" : "required",
+                           p.default_value ? fmt::format("`{}`", format_value(*p.default_value)) : std::string("required"),
                            p.unit.empty() ? "-" : p.unit, p.doc);
     }
   }

@@ -13,6 +13,8 @@ namespace pbf {
 
 namespace {
 const std::vector<std::string> kBuiltinColumns = {"step", "time", "dt", "particles"};
+// Columns at least 14 wide, and always a space before a long name.
+std::size_t width(const std::string& column) { return std::max<std::size_t>(14, column.size() + 2); }
 }
 
 void Thermo::configure(int every, std::vector<std::string> columns, const std::string& csv_path) {
@@ -89,7 +91,7 @@ void Thermo::start_run(Simulation& sim) {
   if (every_ <= 0) return;
   check(sim);
   std::string header;
-  for (const auto& c : columns_) header += fmt::format("{:>14}", c);
+  for (const auto& c : columns_) header += fmt::format("{:>{}}", c, width(c));
   spdlog::info("{}", header);
   if (sim.step() % every_ == 0) output(sim);
 }
@@ -103,7 +105,7 @@ void Thermo::output(Simulation& sim) {
   last_step_ = sim.step();
   const auto v = values(sim);
   std::string line;
-  for (double x : v) line += fmt::format("{:>14.7g}", x);
+  for (std::size_t k = 0; k < v.size(); ++k) line += fmt::format("{:>{}.7g}", v[k], width(columns_[k]));
   spdlog::info("{}", line);
   if (csv_.is_open()) {
     std::string row;

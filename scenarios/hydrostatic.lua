@@ -6,15 +6,20 @@
 --
 -- Variables: particles (about how many, default 8000), t_end (simulated seconds, default
 -- 2), height (column height in m, default 0.4; the footprint is height/2 square),
--- iterations (default 4), one_sided (default true), xsph (XSPH c, default 0.01), csv (thermo CSV file, default none),
+-- iterations (default 4), one_sided and wall_density (default true), scorr_k (default
+-- 0.001), xsph (XSPH c, default 0.01), csv (thermo CSV file, default none),
 -- out (frame directory, default none).
+local function flag(value, default)
+  if value == nil then return default end
+  return not (value == false or value == 0 or value == "false")
+end
 local N = var.particles or 8000
 local t_end = var.t_end or 2.0
 local H = var.height or 0.4
 local W = H / 2
 local s = (W * W * H / N) ^ (1 / 3)        -- lattice spacing
-local h = 2 * s                             -- kernel radius
 s = W / math.floor(W / s + 0.5)             -- a whole number of layers across
+local h = 2 * s                             -- kernel radius
 local dt = var.dt or 0.4 * h / math.sqrt(2 * 9.81 * H)
 
 pbf.domain{lo = {0, 0, 0}, hi = {W, W, 1.5 * H}}
@@ -23,9 +28,9 @@ pbf.timestep(dt)
 pbf.lattice{lo = {0, 0, 0}, hi = {W, W, H}, spacing = s}
 
 pbf.fix("gravity", "gravity", {})
-local one_sided = not (var.one_sided == "false" or var.one_sided == 0)
-pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, one_sided = one_sided})
-pbf.fix("walls", "box", {})
+pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, one_sided = flag(var.one_sided, true),
+                       scorr_k = var.scorr_k or 0.001})
+pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
 pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 if var.out then pbf.fix("frames", "dump/text", {dir = var.out, interval = 0.05}) end
 

@@ -63,7 +63,8 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
     case LUA_TSTRING: return string(L, index, name.c_str());
     case LUA_TTABLE: return vec3(L, index, fmt::format("parameter '{}'", name).c_str());
     default:
-      throw Error(fmt::format("parameter '{}': a {} is not a parameter value", name, luaL_typename(L, index)));
+      throw Error(fmt::format("parameter '{}': a {} is not a parameter value (number, boolean, string or "
+                              "{{x, y, z}})", name, luaL_typename(L, index)));
   }
 }
 
@@ -82,9 +83,9 @@ GivenParams table_params(lua_State* L, int index, const char* what) {
     const std::string name = lua_tostring(L, -2);
     try {
       given.emplace_back(name, param_value(L, -1, name));
-    } catch (...) {
+    } catch (const Error& e) {
       lua_pop(L, 2);
-      throw;
+      throw Error(fmt::format("{}: {}", what, e.what()));
     }
     lua_pop(L, 1);
   }

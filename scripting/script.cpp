@@ -76,7 +76,7 @@ template <double (Simulation::*Get)() const, void (Simulation::*Set)(double)>
 int l_setting(lua_State* L) {
   State& S = state(L);
   if (!lua_isnoneornil(L, 1)) {
-    S.not_running("a pbf setting");
+    S.not_running("pbf.kernel_radius, pbf.timestep and pbf.rest_density");
     (S.sim.*Set)(lua::number(L, 1, "the value"));
   }
   lua_pushnumber(L, (S.sim.*Get)());
@@ -99,6 +99,8 @@ int l_lattice(lua_State* L) {
 int l_read_scene(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.read_scene");
+  if (S.sim.particles().size() > 0)
+    throw Error("pbf.read_scene: the scene file sets the domain, so read it before creating any particle");
   const SceneFile scene = read_scene_file(lua::string(L, 1, "pbf.read_scene: the path"));
   const double mass = load_scene(S.sim, scene);
   lua_createtable(L, 0, 7);
@@ -119,7 +121,8 @@ int l_fix(lua_State* L) {
   S.not_running("pbf.fix");
   const std::string id = lua::string(L, 1, "pbf.fix: the id");
   const std::string style = lua::string(L, 2, "pbf.fix: the style");
-  S.sim.add_fix(StyleRegistry::builtin().make_fix(id, style, lua::table_params(L, 3, "pbf.fix: the parameters")));
+  const std::string what = fmt::format("fix '{}' ({})", id, style);
+  S.sim.add_fix(StyleRegistry::builtin().make_fix(id, style, lua::table_params(L, 3, what.c_str())));
   return 0;
 }
 
@@ -135,8 +138,8 @@ int l_compute(lua_State* L) {
   S.not_running("pbf.compute");
   const std::string id = lua::string(L, 1, "pbf.compute: the id");
   const std::string style = lua::string(L, 2, "pbf.compute: the style");
-  S.sim.add_compute(
-      StyleRegistry::builtin().make_compute(id, style, lua::table_params(L, 3, "pbf.compute: the parameters")));
+  const std::string what = fmt::format("compute '{}' ({})", id, style);
+  S.sim.add_compute(StyleRegistry::builtin().make_compute(id, style, lua::table_params(L, 3, what.c_str())));
   return 0;
 }
 
@@ -152,6 +155,7 @@ int l_value(lua_State* L) {
   const std::string id = lua::string(L, 1, "pbf.value: the compute id");
   Compute* c = S.sim.find_compute(id);
   if (!c) throw Error(fmt::format("pbf.value: no compute with id '{}'", id));
+  if (S.sim.particles().size() == 0) throw Error(fmt::format("pbf.value('{}'): there are no particles yet", id));
   std::vector<double> v;
   if (c->per_particle()) {
     c->evaluate_per_particle(S.sim, v);

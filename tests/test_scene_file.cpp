@@ -49,7 +49,7 @@ TEST(SceneFile, ReadsHeaderOnOneLineOrSeveralWithComments) {
 }
 
 TEST(SceneFile, MalformedFilesNameTheLine) {
-  expect_error("3\n" + kHeader + "0.1 0.1 0.1 0 0 0\n0.2 0.1 0.1 0 0 0\n", 8, "found 2 particle lines");
+  expect_error("3\n" + kHeader + "0.1 0.1 0.1 0 0 0\n0.2 0.1 0.1 0 0 0\n", 8, "found 2 particle line(s)");
   expect_error("1\n" + kHeader + "0.1 0.1 0.1 0 0 0\n0.2 0.1 0.1 0 0 0\n", 8, "more particle lines than the count");
   expect_error("2\n" + kHeader + "0.1 0.1 abc 0 0 0\n0.2 0.1 0.1 0 0 0\n", 7, "'abc' is not a number");
   expect_error("2\n" + kHeader + "0.1 nan 0.1 0 0 0\n0.2 0.1 0.1 0 0 0\n", 7, "not a finite number");
@@ -68,7 +68,7 @@ TEST(SceneFile, MalformedFilesNameTheLine) {
 }
 
 TEST(SceneFile, AHugeCountWithoutDataIsAnErrorNotAnAllocation) {
-  expect_error("999999999999\n" + kHeader + "0.1 0.1 0.1 0 0 0\n", 7, "found 1 particle lines");
+  expect_error("999999999999\n" + kHeader + "0.1 0.1 0.1 0 0 0\n", 7, "found 1 particle line(s)");
 }
 
 TEST(SceneFile, MissingFileIsAnError) {

@@ -44,7 +44,7 @@ class Box : public Fix, public DensityBoundary {
     return {Stage::constraints, Stage::velocity_update};
   }
   Role role() const override { return Role::boundary; }
-  const DensityBoundary* density_boundary() const override { return wall_density_ ? this : nullptr; }
+  DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
 
   // Only with restitution: the velocity each particle arrives with (within a step only).
   void predict(Simulation& sim) override {
@@ -90,9 +90,17 @@ class Box : public Fix, public DensityBoundary {
   }
 
   void init(Simulation& sim) override {
-    if (!wall_density_) return;
+    if (wall_density_) prepare(sim);
+  }
+
+  void prepare(const Simulation& sim) override {
     const auto& P = sim.particles();
+    if (P.size() == 0) return;
     const double mass = deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) / double(P.size());
+    if (mass == prepared_[0] && sim.kernel_radius() == prepared_[1] && sim.rest_density() == prepared_[2]) return;
+    prepared_[0] = mass;
+    prepared_[1] = sim.kernel_radius();
+    prepared_[2] = sim.rest_density();
     const double spacing = lattice_spacing(mass, sim.kernels(), sim.rest_density());
     const double missing = lattice_wall_density(mass, sim.kernels(), sim.rest_density()) / sim.rest_density();
     const double h = sim.kernel_radius();
@@ -144,6 +152,7 @@ class Box : public Fix, public DensityBoundary {
   }
 
   real delta_ = 0;
+  double prepared_[3] = {0, 0, 0};  // mass, h, rho0 that delta_ was computed for
   double restitution_, friction_;
   bool wall_density_;
   std::vector<real> incoming_[3];

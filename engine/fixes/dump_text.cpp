@@ -2,7 +2,7 @@
 // line 1 the particle count N, then N lines "x y z vx vy vz" in input (id) order, each
 // number in the shortest form that reads back to the same value. Frame 0 is the state
 // when the fix starts; frame k is written at the first step whose time reaches k times the
-// interval (within a relative 1e-9), or every `every` steps; never twice for one step.
+// interval after that (within a relative 1e-9), or every `every` steps; never twice for one step.
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -31,6 +31,7 @@ class DumpText : public Fix {
     std::filesystem::create_directories(dir_, ec);
     if (!std::filesystem::is_directory(dir_))
       throw Error(fmt::format("cannot create the frame directory '{}'", dir_));
+    if (frame_ == 0) start_ = sim.time();  // frames count from when the fix starts
     if (due(sim)) write(sim);
   }
 
@@ -42,7 +43,7 @@ class DumpText : public Fix {
   bool due(const Simulation& sim) const {
     if (sim.step() == last_step_) return false;
     if (every_ > 0) return sim.step() % every_ == 0;
-    return sim.time() >= static_cast<double>(frame_) * interval_ * (1 - 1e-9);
+    return sim.time() - start_ >= static_cast<double>(frame_) * interval_ * (1 - 1e-9);
   }
 
   void write(Simulation& sim) {
@@ -66,6 +67,7 @@ class DumpText : public Fix {
   double interval_;
   std::int64_t every_;
   std::int64_t frame_ = 0, last_step_ = -1;
+  double start_ = 0;
 };
 
 }  // namespace

@@ -118,7 +118,7 @@ SceneFile read_scene_file(const std::string& path) {
     ++read;
   }
   if (read != scene.count)
-    reader.fail(reader.line(), fmt::format("found {} particle lines, but the count N on line {} is {}", read,
+    reader.fail(reader.line(), fmt::format("found {} particle line(s), but the count N on line {} is {}", read,
                                            count_line, scene.count));
   return scene;
 }
