@@ -97,16 +97,19 @@ void NeighborGrid::build_lists(const real* x, const real* y, const real* z, doub
       const std::size_t before = mine.size();
       const long c = cell_[i];
       const long cx = c % dims_[0], cy = (c / dims_[0]) % dims_[1], cz = c / (dims_[0] * dims_[1]);
+      // Cells are numbered x fastest, so the three cells along x of each (y, z) row are one
+      // contiguous run of the sorted order: 9 runs instead of 27 cells.
+      const long x0 = std::max(0L, cx - 1), x1 = std::min(dims_[0] - 1, cx + 1);
       for (long nz = std::max(0L, cz - 1); nz <= std::min(dims_[2] - 1, cz + 1); ++nz)
-        for (long ny = std::max(0L, cy - 1); ny <= std::min(dims_[1] - 1, cy + 1); ++ny)
-          for (long nx = std::max(0L, cx - 1); nx <= std::min(dims_[0] - 1, cx + 1); ++nx) {
-            const std::size_t cell = static_cast<std::size_t>((nz * dims_[1] + ny) * dims_[0] + nx);
-            for (std::uint32_t s = cell_start_[cell]; s < cell_start_[cell + 1]; ++s) {
-              const std::uint32_t j = sorted_[s];
-              const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-              if (j != i && dx * dx + dy * dy + dz * dz < h2) mine.push_back(j);
-            }
+        for (long ny = std::max(0L, cy - 1); ny <= std::min(dims_[1] - 1, cy + 1); ++ny) {
+          const std::size_t row = static_cast<std::size_t>((nz * dims_[1] + ny) * dims_[0]);
+          const std::uint32_t first = cell_start_[row + x0], last = cell_start_[row + x1 + 1];
+          for (std::uint32_t s = first; s < last; ++s) {
+            const std::uint32_t j = sorted_[s];
+            const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+            if (j != i && dx * dx + dy * dy + dz * dz < h2) mine.push_back(j);
           }
+        }
       offset_[i + 1] = mine.size() - before;
     }
 #pragma omp barrier

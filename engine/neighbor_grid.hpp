@@ -6,7 +6,7 @@
 // Positions outside the domain fall into the edge cells (clamping keeps any two points
 // closer than h in the same or adjacent cells), and the cell count is capped, so memory
 // follows the particle count, not the box volume over h^3. Neighbour order is fixed
-// (27 cells in a fixed order, ascending index within a cell): the lists, and everything
+// (the 3 x 3 x 3 cells in a fixed order, ascending index within a cell): the lists, and everything
 // summed over them, are the same at any thread count.
 #include <cstddef>
 #include <cstdint>

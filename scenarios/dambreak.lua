@@ -1,8 +1,9 @@
 -- dambreak.lua: the 3D dam break of Martin & Moyce (1952). A water column a wide (x) and
--- 2a high (z), against the wall x = 0 of a tank 5a long, is released at t = 0 and surges
--- along the floor. Thermo tracks the surge front (the 99th percentile of x) so that
--- Z = front / a against T = t sqrt(2 g / a) can be compared with the experiment
--- (share/plot_front.py); text frames go to out/ (share/render_frames.py makes a movie).
+-- 2a high (z), against the wall x = 0 of a tank 5a long and 4a high, is released at t = 0,
+-- surges along the floor, runs up the far wall and falls back. Thermo tracks the surge front
+-- (the 99th percentile of x) so that Z = front / a against T = t sqrt(2 g / a) can be
+-- compared with the experiment (share/plot_front.py); text frames go to out/
+-- (share/render_frames.py --box 0.5 0.05 0.4 makes pictures and a movie).
 --
 --   pbfengine run scenarios/dambreak.lua [-v particles=30000] [-v t_end=1.0] [-v out=out]
 --
@@ -29,7 +30,7 @@ local h = 2 * s
 local depth = layers // 2 * s
 local dt = var.dt or 0.4 * h / math.sqrt(2 * g * 2 * a)   -- 0.4 h per step at the free-fall speed
 
-pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 3 * a}}
+pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 4 * a}}   -- tall enough for the run-up on the far wall
 pbf.kernel_radius(h)
 pbf.timestep(dt)
 pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, 2 * a}, spacing = s}

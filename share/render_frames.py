@@ -100,6 +100,8 @@ def parse_args(argv):
     p.add_argument("--out", help="directory for the PNGs (default FRAMES_DIR/png)")
     p.add_argument("--every", type=int, default=1, metavar="K", help="render every Kth frame")
     p.add_argument("--L", type=float, help="domain side; default: largest coordinate, rounded up")
+    p.add_argument("--box", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                   help="a box domain [0,X]x[0,Y]x[0,Z] instead of a cube (e.g. a dam-break tank)")
     p.add_argument("--vmax", type=float, help="top of the speed colour range (m/s); default: "
                    "the largest speed in the frames rendered")
     p.add_argument("--interval", type=float, help="output interval (s), to show time in titles")
@@ -160,8 +162,11 @@ def main(argv=None):
     fig = plt.figure(figsize=(w / 100, h / 100), dpi=100)
     # Explicit placement: the default layout leaves the 3D box small in a wide margin.
     ax = fig.add_axes([0.0, 0.02, 0.84, 0.9], projection="3d")
-    ax.set_xlim(0, L), ax.set_ylim(0, L), ax.set_zlim(0, L)
-    ax.set_box_aspect((1, 1, 1))
+    box = args.box if args.box else (L, L, L)
+    if min(box) <= 0:
+        fail("--box sides must be positive")
+    ax.set_xlim(0, box[0]), ax.set_ylim(0, box[1]), ax.set_zlim(0, box[2])
+    ax.set_box_aspect(box)
     ax.set_xlabel("x (m)"), ax.set_ylabel("y (m)"), ax.set_zlabel("z (m)")
     ax.view_init(elev=args.view[0], azim=args.view[1])
     norm = colors.Normalize(vmin=0.0, vmax=vmax)

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "engine/error.hpp"
 #include "engine/style_registry.hpp"
@@ -77,4 +79,14 @@ TEST(Params, HelpListsEveryStyleAndEveryParameter) {
     for (const auto& p : s.params) EXPECT_NE(one.find(p.name), std::string::npos) << s.name << "." << p.name;
   }
   EXPECT_THROW(r.help("no_such_style"), Error);
+}
+
+TEST(Params, StylesReferenceInDocsIsCurrent) {
+  // docs/styles.md holds the output of `pbfengine help --markdown`; regenerate it when a
+  // style or parameter changes.
+  std::ifstream in(std::string(PBF_SOURCE_DIR) + "/docs/styles.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find(StyleRegistry::builtin().markdown_reference()), std::string::npos)
+      << "docs/styles.md is stale: regenerate it with build/pbfengine help --markdown";
 }

@@ -6,6 +6,12 @@
 
 namespace pbf {
 
+// The factory of a compute style whose constructor takes (id, params).
+template <class T>
+auto make_compute() {
+  return [](const std::string& id, const Params& p) { return std::make_unique<T>(id, p); };
+}
+
 void register_gravity(StyleRegistry&);
 void register_pbf(StyleRegistry&);
 void register_box(StyleRegistry&);

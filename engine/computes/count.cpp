@@ -1,0 +1,24 @@
+// count: the number of particles.
+#include "engine/fixes/styles.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Count : public Compute {
+ public:
+  Count(const std::string& id, const Params&) : Compute(id, "count") {}
+  std::vector<std::string> names() const override { return {"value"}; }
+  void evaluate(Simulation& sim, std::vector<double>& values) override {
+    values = {static_cast<double>(sim.particles().size())};
+  }
+};
+
+}  // namespace
+
+void register_compute_count(StyleRegistry& r) {
+  r.add({"count", StyleKind::compute, "number of particles", {}, nullptr, make_compute<Count>()});
+}
+
+}  // namespace pbf

@@ -1,0 +1,40 @@
+// density_error: rho/rho0 - 1 over the particles: its average and maximum, and the
+// average compression, the mean of max(rho/rho0 - 1, 0) (what a one-sided solver removes).
+#include <algorithm>
+
+#include "engine/fixes/styles.hpp"
+#include "engine/parallel.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class DensityError : public Compute {
+ public:
+  DensityError(const std::string& id, const Params&) : Compute(id, "density_error") {}
+  std::vector<std::string> names() const override { return {"avg", "max", "compression"}; }
+  void evaluate(Simulation& sim, std::vector<double>& values) override {
+    sim.refresh_neighbors();
+    const auto& rho = sim.density();
+    const double inv = 1.0 / sim.rest_density();
+    const std::size_t n = rho.size();
+    const double avg = deterministic_sum(n, [&](std::size_t i) { return rho[i] * inv - 1; }) / double(n);
+    const double compression =
+        deterministic_sum(n, [&](std::size_t i) { return std::max(rho[i] * inv - 1, 0.0); }) / double(n);
+    double most = -1;
+#pragma omp parallel for reduction(max : most)
+    for (std::size_t i = 0; i < n; ++i) most = std::max(most, rho[i] * inv - 1);
+    values = {avg, most, compression};
+  }
+};
+
+}  // namespace
+
+void register_compute_density_error(StyleRegistry& r) {
+  r.add({"density_error", StyleKind::compute,
+         "rho/rho0 - 1: avg, max, and compression = mean of max(rho/rho0 - 1, 0)", {}, nullptr,
+         make_compute<DensityError>()});
+}
+
+}  // namespace pbf

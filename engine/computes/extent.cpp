@@ -1,0 +1,41 @@
+// extent: the bounding box of the fluid, min and max of x, y and z (m).
+#include <algorithm>
+#include <cmath>
+
+#include "engine/fixes/styles.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Extent : public Compute {
+ public:
+  Extent(const std::string& id, const Params&) : Compute(id, "extent") {}
+  std::vector<std::string> names() const override { return {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}; }
+  void evaluate(Simulation& sim, std::vector<double>& values) override {
+    const auto& P = sim.particles();
+    const real* c[3] = {P.x(), P.y(), P.z()};
+    values.clear();
+    for (int a = 0; a < 3; ++a) {
+      double lo = INFINITY, hi = -INFINITY;
+      const real* ca = c[a];
+#pragma omp parallel for reduction(min : lo) reduction(max : hi)
+      for (std::size_t i = 0; i < P.size(); ++i) {
+        lo = std::min(lo, double(ca[i]));
+        hi = std::max(hi, double(ca[i]));
+      }
+      values.push_back(lo);
+      values.push_back(hi);
+    }
+  }
+};
+
+}  // namespace
+
+void register_compute_extent(StyleRegistry& r) {
+  r.add({"extent", StyleKind::compute, "bounding box of the fluid: xmin, xmax, ymin, ymax, zmin, zmax (m)", {},
+         nullptr, make_compute<Extent>()});
+}
+
+}  // namespace pbf

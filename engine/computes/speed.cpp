@@ -1,0 +1,36 @@
+// speed: the largest and the mean particle speed |v| (m/s).
+#include <algorithm>
+#include <cmath>
+
+#include "engine/fixes/styles.hpp"
+#include "engine/parallel.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Speed : public Compute {
+ public:
+  Speed(const std::string& id, const Params&) : Compute(id, "speed") {}
+  std::vector<std::string> names() const override { return {"max", "avg"}; }
+  void evaluate(Simulation& sim, std::vector<double>& values) override {
+    const auto& P = sim.particles();
+    auto speed = [&](std::size_t i) {
+      const double vx = P.vx()[i], vy = P.vy()[i], vz = P.vz()[i];
+      return std::sqrt(vx * vx + vy * vy + vz * vz);
+    };
+    double most = 0;
+#pragma omp parallel for reduction(max : most)
+    for (std::size_t i = 0; i < P.size(); ++i) most = std::max(most, speed(i));
+    values = {most, deterministic_sum(P.size(), speed) / double(P.size())};
+  }
+};
+
+}  // namespace
+
+void register_compute_speed(StyleRegistry& r) {
+  r.add({"speed", StyleKind::compute, "particle speed |v|: max and avg (m/s)", {}, nullptr, make_compute<Speed>()});
+}
+
+}  // namespace pbf
