@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-packages=(g++ cmake make pkg-config liblua5.4-dev libspdlog-dev libfmt-dev libcli11-dev libgtest-dev
+packages=(g++ cmake make liblua5.4-dev libspdlog-dev libfmt-dev libcli11-dev libgtest-dev
           libbenchmark-dev libstb-dev ffmpeg python3 python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

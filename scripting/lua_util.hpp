@@ -3,6 +3,7 @@
 // lua_error), so C++ destructors always run; `guarded` turns the exception into one Lua
 // error carrying the calling script's FILE:LINE.
 #include <lua.hpp>
+#include <new>
 #include <string>
 
 #include "engine/error.hpp"
@@ -30,6 +31,8 @@ int guarded(lua_State* L) {
       return F(L);
     } catch (const Error& e) {
       message = e.located() ? e.what() : where(L) + e.what();
+    } catch (const std::bad_alloc&) {
+      message = where(L) + "out of memory";
     } catch (const std::exception& e) {
       message = where(L) + e.what();
     }

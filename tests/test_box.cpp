@@ -1,0 +1,63 @@
+// The box walls: restitution per impact, friction per second (independent of the time
+// step), positions kept inside.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/lattice.hpp"
+#include "engine/simulation.hpp"
+#include "engine/style_registry.hpp"
+
+using namespace pbf;
+
+namespace {
+
+// One particle (alone, so the one-sided density constraint leaves it be) in a unit box.
+void single_particle(Simulation& sim, double z, double vx, double dt) {
+  Domain d;
+  sim.set_domain(d);
+  sim.set_kernel_radius(0.02);
+  sim.set_timestep(dt);
+  const double lo[3] = {0.5, 0.5, z}, hi[3] = {0.51, 0.51, z + 0.01}, v[3] = {vx, 0, 0};
+  add_lattice(sim, lo, hi, 0.01, v);
+  ASSERT_EQ(sim.particles().size(), 1u);
+  sim.add_fix(StyleRegistry::builtin().make_fix("pbf", "pbf", {}));
+}
+
+}  // namespace
+
+TEST(Box, RestitutionReturnsThatShareOfTheImpactSpeed) {
+  for (double e : {0.0, 0.5, 0.9}) {
+    Simulation sim;
+    single_particle(sim, 0.1, 0, 1e-4);
+    sim.add_fix(StyleRegistry::builtin().make_fix("g", "gravity", {}));
+    sim.add_fix(StyleRegistry::builtin().make_fix("walls", "box", {{"restitution", e}}));
+    auto vz = [&] { return double(sim.particles().vz()[0]); };  // arrays move when reordered
+    double impact = 0, rebound = 0;
+    for (int s = 0; s < 3000; ++s) {  // falls 0.1 m in 0.14 s, then flies up again
+      const double before = vz();
+      sim.run(1);
+      if (before < 0 && vz() >= 0 && impact == 0) impact = -before;
+      if (impact > 0) rebound = std::max(rebound, vz());
+    }
+    ASSERT_GT(impact, 1.3);  // sqrt(2 g 0.1) = 1.40 m/s
+    EXPECT_NEAR(rebound, e * impact, 0.01 * impact + 2e-3) << "restitution " << e;
+  }
+}
+
+TEST(Box, FrictionIsARatePerSecondWhateverTheTimeStep) {
+  double speed[2];
+  for (int k = 0; k < 2; ++k) {
+    const double dt = k == 0 ? 2e-3 : 1e-3;
+    Simulation sim;
+    single_particle(sim, 0.0, 0.2, dt);
+    sim.add_fix(StyleRegistry::builtin().make_fix("g", "gravity", {}));
+    sim.add_fix(StyleRegistry::builtin().make_fix("walls", "box", {{"friction", 2.0}}));
+    sim.run(static_cast<std::int64_t>(std::lround(1.0 / dt)));
+    speed[k] = sim.particles().vx()[0];
+  }
+  // It starts 5 mm above the floor and slides from when it lands until t = 1 s.
+  const double sliding = 1.0 - std::sqrt(2 * 0.005 / 9.81);
+  EXPECT_NEAR(speed[0], 0.2 * std::exp(-2.0 * sliding), 5e-4);
+  EXPECT_NEAR(speed[1], speed[0], 5e-4);  // not exp(-2 * 2) with half the step
+}
