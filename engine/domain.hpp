@@ -9,8 +9,10 @@ struct Domain {
   double lo[3] = {0, 0, 0};
   double hi[3] = {1, 1, 1};
 
+  // Compared in the particle data's precision, as walls clamp positions to real(lo), real(hi).
   bool contains(real x, real y, real z) const {
-    return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
+    return x >= real(lo[0]) && x <= real(hi[0]) && y >= real(lo[1]) && y <= real(hi[1]) && z >= real(lo[2]) &&
+           z <= real(hi[2]);
   }
   double extent(int axis) const { return hi[axis] - lo[axis]; }
 };

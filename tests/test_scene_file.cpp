@@ -102,7 +102,7 @@ TEST(SceneFile, MassGivesInteriorParticlesTheRestDensity) {
     for (real v : c) inside = inside && v >= 0.02 && v <= 0.1;
     if (!inside) continue;
     ++interior;
-    EXPECT_NEAR(rho[i] / 1000.0, 1.0, 1e-9);
+    EXPECT_NEAR(rho[i] / 1000.0, 1.0, test::kRounding);
   }
   EXPECT_GT(interior, 100);
 }

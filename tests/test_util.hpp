@@ -9,6 +9,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "engine/real.hpp"
+
 namespace pbf::test {
 
 struct Result {
@@ -51,4 +53,10 @@ inline std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
+}  // namespace pbf::test
+
+namespace pbf::test {
+// Relative tolerance for results that would be exact but for rounding: a few hundred
+// roundings of the particle data's type.
+inline constexpr double kRounding = sizeof(pbf::real) == 4 ? 1e-4 : 1e-9;
 }  // namespace pbf::test
