@@ -39,6 +39,7 @@ class VorticityConfinement : public Fix {
     const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass();
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *wx = P.data(omega_, 0), *wy = P.data(omega_, 1), *wz = P.data(omega_, 2);
+    magnitude_.resize(n);
 
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -57,20 +58,20 @@ class VorticityConfinement : public Fix {
       wx[i] = w[0];
       wy[i] = w[1];
       wz[i] = w[2];
+      magnitude_[i] = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     }
 
     for (auto& c : dv_) c.resize(n);
     const real scale = real(epsilon_ * sim.kernel_radius() * sim.timestep());
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const real wi = std::sqrt(wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i]);
+      const real wi = magnitude_[i];
       real eta[3] = {0, 0, 0};
       const std::uint32_t* nb = grid.neighbors(i);
       for (std::uint32_t k = 0; k < grid.count(i); ++k) {
         const std::uint32_t j = nb[k];
         const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-        const real wj = std::sqrt(wx[j] * wx[j] + wy[j] * wy[j] + wz[j] * wz[j]);
-        const real g = m[j] / rho[j] * (wj - wi) * K.spiky_grad_factor(dx * dx + dy * dy + dz * dz);
+        const real g = m[j] / rho[j] * (magnitude_[j] - wi) * K.spiky_grad_factor(dx * dx + dy * dy + dz * dz);
         eta[0] += g * dx;
         eta[1] += g * dy;
         eta[2] += g * dz;
@@ -99,6 +100,7 @@ class VorticityConfinement : public Fix {
  private:
   double epsilon_;
   FieldId omega_ = 0;
+  std::vector<real> magnitude_;  // |omega| of each particle (within a step only)
   std::vector<real> dv_[3];
 };
 
