@@ -10,7 +10,9 @@ std::string where(lua_State* L) {
   lua_Debug ar;
   for (int level = 1; lua_getstack(L, level, &ar); ++level) {
     lua_getinfo(L, "Sl", &ar);
-    if (ar.currentline > 0) return fmt::format("{}:{}: ", ar.short_src[0] ? ar.source + (ar.source[0] == '@') : "?", ar.currentline);
+    if (ar.currentline <= 0) continue;  // a C function
+    // A file chunk's source is "@PATH": the path as given, which short_src may abbreviate.
+    return fmt::format("{}:{}: ", ar.source[0] == '@' ? ar.source + 1 : ar.short_src, ar.currentline);
   }
   return "";
 }
