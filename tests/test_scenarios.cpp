@@ -134,7 +134,7 @@ TEST(InitFile, RunsASceneFromTheGeneratorAtItsOutputInterval) {
   double a, b;
   int compared = 0;
   while (in >> a && frame >> b) {
-    EXPECT_DOUBLE_EQ(a, b);
+    EXPECT_EQ(pbf::real(a), pbf::real(b));  // frames round-trip the particle data's type
     ++compared;
   }
   EXPECT_GT(compared, 6 * 1500);
