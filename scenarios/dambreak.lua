@@ -11,8 +11,8 @@
 -- 1.0), a (column width in m, default 0.1), out (frame directory, default "out"; "" for
 -- none), interval (seconds between frames, default 0.02), csv (thermo CSV, default
 -- out/thermo.csv), iterations (default 4), vorticity (confinement epsilon, default 0.05),
--- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false, default true) and
--- scorr_k (default 0.001) to compare the solver variants of docs/physics.md.
+-- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false) and scorr_k to compare
+-- the solver variants of docs/physics.md (default: the styles' defaults, pbfengine help pbf).
 local function flag(value, default)
   if value == nil then return default end
   return not (value == false or value == 0 or value == "false")
@@ -36,8 +36,7 @@ pbf.timestep(dt)
 pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, 2 * a}, spacing = s}
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
-pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, one_sided = flag(var.one_sided, true),
-                       scorr_k = var.scorr_k or 0.001})
+pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
 pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
 pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
 pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})

@@ -6,9 +6,9 @@
 --
 -- Variables: particles (about how many, default 8000), t_end (simulated seconds, default
 -- 2), height (column height in m, default 0.4; the footprint is height/2 square),
--- iterations (default 4), one_sided and wall_density (default true), scorr_k (default
--- 0.001), xsph (XSPH c, default 0.01), csv (thermo CSV file, default none),
--- out (frame directory, default none).
+-- iterations, one_sided, wall_density and scorr_k (default: the styles' defaults, see
+-- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
+-- csv (thermo CSV file, default none), out (frame directory, default none).
 local function flag(value, default)
   if value == nil then return default end
   return not (value == false or value == 0 or value == "false")
@@ -28,8 +28,7 @@ pbf.timestep(dt)
 pbf.lattice{lo = {0, 0, 0}, hi = {W, W, H}, spacing = s}
 
 pbf.fix("gravity", "gravity", {})
-pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, one_sided = flag(var.one_sided, true),
-                       scorr_k = var.scorr_k or 0.001})
+pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
 pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
 pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 if var.out then pbf.fix("frames", "dump/text", {dir = var.out, interval = 0.05}) end
@@ -40,7 +39,7 @@ pbf.compute("v", "speed")
 pbf.compute("top", "front", {axis = "z", percentile = 99})
 pbf.compute("box", "extent")
 pbf.thermo{every = math.max(1, math.floor(0.1 / dt)), csv = var.csv,
-           columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.max", "top", "box.zmin"}}
+           columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.avg", "v.max", "top", "box.zmin"}}
 
 print(string.format("hydrostatic: %d particles, spacing %.4g m, h %.4g m, dt %.4g s", pbf.count(), s, h, dt))
 pbf.run(math.ceil(t_end / dt - 1e-9))

@@ -58,6 +58,18 @@ TEST(Pbf, BringsACompressedBlockTowardRestDensity) {
   EXPECT_LT(value(sim, "density_error", 2), 0.02);  // average compression
 }
 
+TEST(Pbf, AFreeBlockAtRestStaysAtRest) {
+  // A lattice at rest density in zero gravity is in equilibrium: with the default
+  // parameters nothing moves. (An artificial pressure s_corr > 0 would push its surface
+  // particles out and, with a one-sided constraint, nothing would pull them back.)
+  Simulation sim;
+  compressed_block(sim, 8, 0.01, 1.0);
+  sim.add_fix(styles().make_fix("pbf", "pbf", {}));
+  sim.run(200);
+  EXPECT_LT(value(sim, "speed", 0), 1e-9);
+  EXPECT_NEAR(value(sim, "extent", 1) - value(sim, "extent", 0), 0.07, 1e-9);
+}
+
 TEST(Pbf, CorrectionsConserveMomentum) {
   Simulation sim;
   compressed_block(sim, 8, 0.01, 0.8);

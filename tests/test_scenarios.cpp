@@ -55,8 +55,11 @@ TEST_P(Hydrostatic, ColumnStaysAtRest) {
     EXPECT_GT(c["top"][k], top0 - 1.5 * s - 0.02 * H) << "t = " << c["time"][k];
     // Average compression: 4 iterations leave about 1.5 percent; 3 percent fails the solver.
     EXPECT_LT(c["err.compression"][k], 0.03) << "t = " << c["time"][k];
-    // Residual motion: small next to the free-fall speed over the column, sqrt(2 g H).
-    EXPECT_LT(c["v.max"][k], 0.15 * std::sqrt(2 * g * H)) << "t = " << c["time"][k];
+    // Residual motion, against the free-fall speed over the column, sqrt(2 g H) = 2.8 m/s:
+    // the solver leaves particles jostling at about 2% of it on average (docs/physics.md);
+    // a collapse or a slosh moves the whole column at a good fraction of it.
+    EXPECT_LT(c["v.avg"][k], 0.04 * std::sqrt(2 * g * H)) << "t = " << c["time"][k];
+    EXPECT_LT(c["v.max"][k], 0.25 * std::sqrt(2 * g * H)) << "t = " << c["time"][k];
     EXPECT_GE(c["box.zmin"][k], 0.0);
   }
 }

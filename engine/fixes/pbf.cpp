@@ -191,7 +191,7 @@ void register_pbf(StyleRegistry& r) {
          "Position Based Fluids density constraint and integrator (Macklin & Mueller 2013)",
          {{"iterations", ParamType::Integer, std::int64_t{4}, "", "constraint solver iterations per step"},
           {"epsilon", ParamType::Real, 0.01, "S0", "relaxation epsilon, relative to S0 (see docs)"},
-          {"scorr_k", ParamType::Real, 0.001, "", "artificial pressure strength k (s_corr is divided by S0)"},
+          {"scorr_k", ParamType::Real, 0.0, "", "artificial pressure strength k (s_corr is divided by S0; 0: none)"},
           {"scorr_n", ParamType::Integer, std::int64_t{4}, "", "artificial pressure exponent n"},
           {"scorr_dq", ParamType::Real, 0.2, "h", "artificial pressure reference distance delta q, in units of h"},
           {"one_sided", ParamType::Bool, true, "", "constrain only compression, C = max(rho/rho0 - 1, 0)"}},
