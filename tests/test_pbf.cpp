@@ -66,8 +66,9 @@ TEST(Pbf, AFreeBlockAtRestStaysAtRest) {
   compressed_block(sim, 8, 0.01, 1.0);
   sim.add_fix(styles().make_fix("pbf", "pbf", {}));
   sim.run(200);
-  EXPECT_LT(value(sim, "speed", 0), 1e-9);
-  EXPECT_NEAR(value(sim, "extent", 1) - value(sim, "extent", 0), 0.07, 1e-9);
+  // Rounding of the density sums is all that may move it (h / dt = 20 m/s sets the scale).
+  EXPECT_LT(value(sim, "speed", 0), test::kRounding * 20.0);
+  EXPECT_NEAR(value(sim, "extent", 1) - value(sim, "extent", 0), 0.07, test::kRounding * 0.07);
 }
 
 TEST(Pbf, CorrectionsConserveMomentum) {
