@@ -2,11 +2,13 @@
 // hook timed, a blow-up caught after the hook that produced it.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
 #include "engine/error.hpp"
+#include "engine/parallel.hpp"
 #include "engine/simulation.hpp"
 
 namespace pbf {
@@ -26,6 +28,7 @@ class RunLoop {
   void run_stage(Stage stage, int iteration = 0);
   void call(Stage stage, Fix& fix, int iteration);
   void check_finite(Stage stage, const Fix& fix) const;
+  void check_clumping() const;
   double now() const { return omp_get_wtime(); }
 
   Simulation& sim_;
@@ -36,6 +39,7 @@ class RunLoop {
   std::size_t row_reorder_ = 0, row_binning_ = 0, row_lists_ = 0, row_checks_ = 0, row_thermo_ = 0;
   double neighbor_mean_sum_ = 0;
   long long neighbor_builds_ = 0;
+  double full_neighborhood_ = 0;  // particles within h of one at rest density
 };
 
 void Simulation::run(std::int64_t steps) { RunLoop(*this).run(steps); }
@@ -59,6 +63,9 @@ void RunLoop::prepare() {
     fields.insert(fields.end(), f->fields().begin(), f->fields().end());
   }
   P.retain_fields(fields);  // a scene pays only for the fields its fixes use
+  const double h = sim_.h_, mass = deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) /
+                                   static_cast<double>(P.size());
+  full_neighborhood_ = 4.0 / 3.0 * M_PI * h * h * h * sim_.rest_density_ / mass;
 
   iterations_ = 1;
   neighbors_ = false;
@@ -135,7 +142,9 @@ void RunLoop::step() {
     timing_.add(row_lists_, now() - t1);
     neighbor_mean_sum_ += sim_.grid_.mean_neighbors();
     ++neighbor_builds_;
-    timing_.neighbor_max = std::max(timing_.neighbor_max, sim_.grid_.max_neighbors());
+    const std::uint32_t most = sim_.grid_.max_neighbors();
+    timing_.neighbor_max = std::max(timing_.neighbor_max, most);
+    if (most > 20 * full_neighborhood_ + 100) check_clumping();
   }
   run_stage(Stage::forces);
   for (int it = 0; it < iterations_; ++it) run_stage(Stage::constraints, it);
@@ -188,6 +197,19 @@ void RunLoop::call(Stage stage, Fix& fix, int iteration) {
     throw Error(fmt::format("step {}: fix '{}' ({}): {}", sim_.step_ + (stage == Stage::end_of_step ? 0 : 1), fix.id(),
                             fix.style(), e.what()));
   }
+}
+
+// Particles packed at many times the rest density: the solver has failed (a time step too
+// large, an unstable setting). Stop before the neighbour lists grow toward N^2 memory.
+void RunLoop::check_clumping() const {
+  const auto& grid = sim_.grid_;
+  std::size_t first = 0;
+  while (first < grid.particle_count() && grid.count(first) <= 20 * full_neighborhood_ + 100) ++first;
+  throw Error(fmt::format(
+      "step {}: the fluid has collapsed into clumps: particle {} has {} neighbours within h, where a particle at "
+      "rest density has about {:.0f} (a time step too large for the solver, or an unstable setting such as a "
+      "two-sided constraint without wall density)",
+      sim_.step_ + 1, sim_.particles_.ids()[first], grid.count(first), full_neighborhood_));
 }
 
 void RunLoop::check_finite(Stage stage, const Fix& fix) const {

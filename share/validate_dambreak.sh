@@ -20,8 +20,9 @@ run() {  # NAME PARTICLES [VAR=VALUE...]
   local vars=()
   for v in "$@"; do vars+=(-v "$v"); done
   echo "validate_dambreak: $name ($n particles)" >&2
+  # A variant that collapses is stopped by the engine: keep the front up to then.
   "$exe" run scenarios/dambreak.lua -v particles="$n" -v t_end=$t_end -v out= -v csv="$work/$name.csv" \
-    "${vars[@]}" > "$work/$name.log"
+    "${vars[@]}" > "$work/$name.log" 2>&1 || echo "  $name stopped: $(tail -n 1 "$work/$name.log")" >&2
   grep -E "particle-steps per second" "$work/$name.log" | sed "s/^/  $name: /" >&2
 }
 
@@ -31,9 +32,8 @@ run res_100k 100000
 run two_sided_30k 30000 one_sided=false
 run no_wall_density_30k 30000 wall_density=false
 run paper_scorr_30k 30000 scorr_k=0.1
-# It flies apart within T = 1, and its clumps make neighbour lists (and run time) explode
-# after that: stopped at T = 1.4.
-run plain_pbf_30k 30000 one_sided=false wall_density=false scorr_k=0.1 t_end=0.1
+# It flies apart within T = 1 and then collapses into clumps, which stops the run at T = 1.4.
+run plain_pbf_30k 30000 one_sided=false wall_density=false scorr_k=0.1
 
 {
   echo "# Dam-break surge front against Martin & Moyce (1952)"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "engine/error.hpp"
 #include "engine/lattice.hpp"
 #include "engine/simulation.hpp"
 #include "engine/style_registry.hpp"
@@ -148,4 +149,20 @@ TEST(Box, ALatticeAtRestStartsAtRestDensityAlongTheWalls) {
   }
   EXPECT_LT(worst_face, 0.005);  // faces: one wall, calibrated
   EXPECT_LT(worst, 0.03);        // edges and corners: the product rule's approximation
+}
+
+TEST(Pbf, ACollapseIntoClumpsStopsTheRun) {
+  // 1,000 particles squeezed into a tenth of their size: 900 times the rest density, every
+  // particle a neighbour of every other. The run stops at once instead of carrying on with
+  // neighbour lists that grow as N^2.
+  Simulation sim;
+  compressed_block(sim, 10, 0.01, 0.1);
+  sim.add_fix(styles().make_fix("pbf", "pbf", {}));
+  try {
+    sim.run(5);
+    FAIL() << "the run went on";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("step 1: the fluid has collapsed into clumps: particle"), std::string::npos)
+        << e.what();
+  }
 }
