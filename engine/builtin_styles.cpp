@@ -10,6 +10,10 @@ void register_builtin_styles(StyleRegistry& r) {
   register_vorticity(r);
   register_xsph(r);
   register_dump_text(r);
+  register_dump_vtk(r);
+  register_dump_image(r);
+  register_dump_movie(r);
+  register_restart(r);
   register_compute_density(r);
   register_compute_density_error(r);
   register_compute_kinetic_energy(r);

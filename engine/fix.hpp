@@ -2,6 +2,7 @@
 // A fix is one style instance in the step pipeline (LAMMPS's word): it names the stages
 // it joins and implements a hook for each. The run loop calls and times the hooks; a fix
 // never times itself.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,11 +12,15 @@ namespace pbf {
 
 class Simulation;
 class DensityBoundary;
+class ByteWriter;
+class ByteReader;
 
-// Order within a stage: the solver first, boundaries last, other fixes between them in
-// script order. So in each constraint iteration the density correction runs before the
-// wall projection, and walls correct velocities after the solver has set them.
-enum class Role { solver = 0, other = 1, boundary = 2 };
+// Order within a stage: the solver first, then other fixes, then boundaries, then outputs,
+// each group in script order. So in each constraint iteration the density correction runs
+// before the wall projection, walls correct velocities after the solver has set them, and
+// dumps and restarts see the finished step. init() follows the same order, so an output
+// finds every field the other fixes declare.
+enum class Role { solver = 0, other = 1, boundary = 2, output = 3 };
 
 class Fix {
  public:
@@ -44,6 +49,14 @@ class Fix {
   virtual void end_of_step(Simulation&) {}
   // End of every run (flush files).
   virtual void finish(Simulation&) {}
+
+  // State that shapes the future but is no particle field (frame counters, a value carried
+  // to the next step, a random generator): saved in restarts and handed back, after a read,
+  // to the fix of the same id and style. restore_state must read exactly what save_state wrote.
+  virtual void save_state(ByteWriter&) const {}
+  virtual void restore_state(ByteReader&) {}
+  // A fix that writes restarts writes one now (on Ctrl-C) and returns its path.
+  virtual std::optional<std::string> write_restart_now(Simulation&) { return std::nullopt; }
 
   // Fields this fix declared in init(); fields no fix declares are freed.
   const std::vector<std::string>& fields() const { return fields_; }

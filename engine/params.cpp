@@ -14,6 +14,7 @@ const char* type_name(ParamType type) {
     case ParamType::Bool: return "boolean";
     case ParamType::String: return "string";
     case ParamType::Vector3: return "vector {x, y, z}";
+    case ParamType::StringList: return "list of names {\"a\", \"b\", ...}";
   }
   return "?";
 }
@@ -25,6 +26,11 @@ std::string format_value(const ParamValue& value) {
     std::string operator()(bool v) const { return v ? "true" : "false"; }
     std::string operator()(const std::string& v) const { return fmt::format("\"{}\"", v); }
     std::string operator()(const Vec3& v) const { return fmt::format("{{{}, {}, {}}}", v[0], v[1], v[2]); }
+    std::string operator()(const Names& v) const {
+      std::string s;
+      for (const auto& name : v) s += (s.empty() ? "\"" : ", \"") + name + "\"";
+      return "{" + s + "}";
+    }
   } visitor;
   return std::visit(visitor, value);
 }
@@ -37,7 +43,8 @@ const char* given_type(const ParamValue& value) {
     case 1: return "integer";
     case 2: return "boolean";
     case 3: return "string";
-    default: return "vector";
+    case 4: return "vector";
+    default: return "list of names";
   }
 }
 
@@ -63,6 +70,10 @@ std::optional<ParamValue> coerce(const ParamValue& value, ParamType type) {
       return std::nullopt;
     case ParamType::Vector3:
       if (auto* v = std::get_if<Vec3>(&value)) return *v;
+      return std::nullopt;
+    case ParamType::StringList:
+      if (auto* v = std::get_if<Names>(&value)) return *v;
+      if (auto* s = std::get_if<std::string>(&value)) return Names{*s};  // one name alone
       return std::nullopt;
   }
   return std::nullopt;
@@ -96,7 +107,7 @@ Params::Params(const std::string& what, const std::vector<ParamSpec>& schema, co
     values_[name] = *converted;
   }
   for (const auto& spec : schema) {
-    if (values_.count(spec.name)) continue;
+    if (values_.count(spec.name) || spec.optional) continue;
     if (!spec.default_value) throw Error(fmt::format("{}: parameter '{}' is required", what, spec.name));
     values_[spec.name] = *spec.default_value;
   }
@@ -113,5 +124,6 @@ std::int64_t Params::integer(const std::string& name) const { return std::get<st
 bool Params::boolean(const std::string& name) const { return std::get<bool>(at(name)); }
 const std::string& Params::string(const std::string& name) const { return std::get<std::string>(at(name)); }
 Vec3 Params::vec3(const std::string& name) const { return std::get<Vec3>(at(name)); }
+const Names& Params::names(const std::string& name) const { return std::get<Names>(at(name)); }
 
 }  // namespace pbf

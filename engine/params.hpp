@@ -12,11 +12,12 @@
 
 namespace pbf {
 
-enum class ParamType { Real, Integer, Bool, String, Vector3 };
+enum class ParamType { Real, Integer, Bool, String, Vector3, StringList };
 const char* type_name(ParamType type);
 
 using Vec3 = std::array<double, 3>;
-using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3>;
+using Names = std::vector<std::string>;
+using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, Names>;
 
 std::string format_value(const ParamValue& value);
 
@@ -26,6 +27,7 @@ struct ParamSpec {
   std::optional<ParamValue> default_value;  // none: the parameter is required
   std::string unit;                         // "" for dimensionless
   std::string doc;                          // one line
+  bool optional = false;                    // no default, and may be left out (Params::has)
 };
 
 // Values as the script gave them (numbers keep their Lua integer/float distinction).
@@ -43,6 +45,8 @@ class Params {
   bool boolean(const std::string& name) const;
   const std::string& string(const std::string& name) const;
   Vec3 vec3(const std::string& name) const;
+  const Names& names(const std::string& name) const;
+  bool has(const std::string& name) const { return values_.count(name) > 0; }
   const std::map<std::string, ParamValue>& values() const { return values_; }
 
  private:

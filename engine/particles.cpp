@@ -47,6 +47,18 @@ void Particles::retain_fields(const std::vector<std::string>& keep) {
   fields_.erase(std::remove_if(fields_.begin() + kMass + 1, fields_.end(), dropped), fields_.end());
 }
 
+void Particles::reset(std::vector<std::int64_t> ids) {
+  std::vector<char> seen(ids.size(), 0);
+  for (std::int64_t id : ids) {
+    if (id < 0 || static_cast<std::uint64_t>(id) >= ids.size() || seen[static_cast<std::size_t>(id)])
+      throw Error(fmt::format("particle ids must be a permutation of 0..{}; found {}", ids.size() - 1, id));
+    seen[static_cast<std::size_t>(id)] = 1;
+  }
+  ids_ = std::move(ids);
+  for (auto& field : fields_)
+    for (auto& component : field.data) component.assign(ids_.size(), real(0));
+}
+
 void Particles::permute(const std::vector<std::uint32_t>& order) {
   std::vector<real> scratch(size());
   for (auto& field : fields_) {

@@ -1,8 +1,8 @@
 #pragma once
 // Particle data as structure-of-arrays. Every per-particle array is a declared field
-// (name, components, doc); position, velocity and mass always exist, fixes declare the
+// (name, components, doc, restart); position, velocity and mass always exist, fixes declare the
 // rest when they join a run. That one declaration lets the engine reorder, dump and
-// (later) save every field without a second list.
+// save every field without a second list.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -17,6 +17,9 @@ struct FieldSpec {
   std::string name;
   int components = 1;
   std::string doc;
+  // Whether the field carries state into the next step (saved in restarts); false for
+  // values a fix recomputes every step before reading them.
+  bool restart = true;
 };
 
 using FieldId = std::size_t;
@@ -58,6 +61,10 @@ class Particles {
   const real* vz() const { return data(kVelocity, 2); }
   const real* mass() const { return data(kMass); }
   const std::int64_t* ids() const { return ids_.data(); }
+
+  // Replaces every particle by `ids.size()` zeroed ones with these ids (a restart fills in
+  // the fields). The ids must be a permutation of 0..n-1.
+  void reset(std::vector<std::int64_t> ids);
 
   // Reorders every field: particle i of the result is particle order[i] of before.
   void permute(const std::vector<std::uint32_t>& order);

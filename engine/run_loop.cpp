@@ -8,10 +8,14 @@
 #include <spdlog/spdlog.h>
 
 #include "engine/error.hpp"
+#include "engine/interrupt.hpp"
+#include "engine/io/restart.hpp"
 #include "engine/parallel.hpp"
 #include "engine/simulation.hpp"
 
 namespace pbf {
+
+constexpr Role kRoles[] = {Role::solver, Role::other, Role::boundary, Role::output};
 
 class RunLoop {
  public:
@@ -29,6 +33,7 @@ class RunLoop {
   void call(Stage stage, Fix& fix, int iteration);
   void check_finite(Stage stage, const Fix& fix) const;
   void check_clumping() const;
+  [[noreturn]] void stop_interrupted();
   double now() const { return omp_get_wtime(); }
 
   Simulation& sim_;
@@ -51,17 +56,20 @@ void RunLoop::prepare() {
   if (sim_.dt_ <= 0) throw Error("run: the time step is not set (pbf.timestep)");
   sim_.check_inside_domain();
   sim_.collect_boundaries();
+  sim_.warn_unmatched_states();
 
   std::vector<std::string> fields;
-  for (const auto& f : sim_.fixes_) {
-    try {
-      f->init(sim_);
-    } catch (const Error& e) {
-      if (e.located()) throw;
-      throw Error(fmt::format("fix '{}' ({}): {}", f->id(), f->style(), e.what()));
+  for (Role role : kRoles)
+    for (const auto& f : sim_.fixes_) {
+      if (f->role() != role) continue;
+      try {
+        f->init(sim_);
+      } catch (const Error& e) {
+        if (e.located()) throw;
+        throw Error(fmt::format("fix '{}' ({}): {}", f->id(), f->style(), e.what()));
+      }
+      fields.insert(fields.end(), f->fields().begin(), f->fields().end());
     }
-    fields.insert(fields.end(), f->fields().begin(), f->fields().end());
-  }
   P.retain_fields(fields);  // a scene pays only for the fields its fixes use
   const double h = sim_.h_, mass = deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) /
                                    static_cast<double>(P.size());
@@ -70,7 +78,7 @@ void RunLoop::prepare() {
   iterations_ = 1;
   neighbors_ = false;
   for (auto& hooks : hooks_) hooks.clear();
-  for (Role role : {Role::solver, Role::other, Role::boundary})
+  for (Role role : kRoles)
     for (const auto& f : sim_.fixes_) {
       if (f->role() != role) continue;
       for (Stage s : f->stages()) hooks_[static_cast<int>(s)].push_back({f.get(), 0});
@@ -101,8 +109,19 @@ void RunLoop::run(std::int64_t steps) {
   sim_.thermo_.start_run(sim_);
   const std::int64_t first = sim_.step_, last = first + steps;
   double next_progress = start + 10.0;
+  InterruptWatch interrupt;
   for (std::int64_t s = first; s < last; ++s) {
-    step();
+    try {
+      step();
+    } catch (const Error& e) {
+      // A failed step leaves the newest restart valid: say where to continue from.
+      const RestartNote& note = sim_.last_restart();
+      if (note.path.empty()) throw;
+      throw Error(fmt::format("{}; the last restart is '{}' (step {}): continue from it with pbf.read_restart",
+                              e.what(), note.path, note.step),
+                  e.located());
+    }
+    if (InterruptWatch::requested()) stop_interrupted();
     if (now() >= next_progress) {
       const double elapsed = now() - start, rate = static_cast<double>(sim_.step_ - first) / elapsed;
       spdlog::info("progress: step {} of {} ({:.0f}%), {:.1f} steps/s, about {:.0f} s left", sim_.step_, last,
@@ -197,6 +216,22 @@ void RunLoop::call(Stage stage, Fix& fix, int iteration) {
     throw Error(fmt::format("step {}: fix '{}' ({}): {}", sim_.step_ + (stage == Stage::end_of_step ? 0 : 1), fix.id(),
                             fix.style(), e.what()));
   }
+}
+
+// Ctrl-C: the step is complete; flush the fixes' files, save the state, stop.
+void RunLoop::stop_interrupted() {
+  for (const auto& f : sim_.fixes_) f->finish(sim_);
+  std::string path;
+  for (const auto& f : sim_.fixes_)
+    if (auto written = f->write_restart_now(sim_)) path = *written;
+  if (path.empty()) {
+    path = fmt::format("interrupted.{}.restart", sim_.step_);
+    write_restart(sim_, path);
+  }
+  throw Interrupted(fmt::format("interrupted (Ctrl-C) after step {} (t = {} s): wrote restart '{}'; continue "
+                                "with pbf.read_restart('{}')",
+                                sim_.step_, sim_.time(), path, path),
+                    path);
 }
 
 // Particles packed at many times the rest density: the solver has failed (a time step too

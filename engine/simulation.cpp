@@ -4,7 +4,10 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include <spdlog/spdlog.h>
+
 #include "engine/error.hpp"
+#include "engine/io/bytes.hpp"
 
 namespace pbf {
 
@@ -40,11 +43,60 @@ void Simulation::set_rest_density(double rho0) {
   rest_density_ = rho0;
 }
 
+void Simulation::set_clock(const Clock& clock) {
+  step_ = clock.step;
+  step_base_ = clock.step_base;
+  time_base_ = clock.time_base;
+}
+
 void Simulation::add_fix(std::unique_ptr<Fix> fix) {
   if (find_fix(fix->id()))
     throw Error(fmt::format("a fix with id '{}' exists already (unfix it first)", fix->id()));
+  restore_saved_state(*fix);
   fixes_.push_back(std::move(fix));
   collect_boundaries();
+}
+
+void Simulation::set_saved_states(std::vector<SavedFixState> states, const std::string& source) {
+  saved_states_ = std::move(states);
+  saved_states_source_ = source;
+  fixes_restored_.clear();
+  check_saved_states_ = true;
+  for (auto& f : fixes_) restore_saved_state(*f);  // fixes declared before the read
+}
+
+void Simulation::restore_saved_state(Fix& fix) {
+  auto it = std::find_if(saved_states_.begin(), saved_states_.end(), [&](const auto& s) { return s.id == fix.id(); });
+  if (it == saved_states_.end()) return;
+  if (it->style != fix.style()) {
+    spdlog::warn("fix '{}' is style '{}' here but '{}' in restart '{}': its saved state is not used", fix.id(),
+                 fix.style(), it->style, saved_states_source_);
+  } else {
+    const std::string what = fmt::format("restart '{}', state of fix '{}' ({})", saved_states_source_, fix.id(),
+                                         fix.style());
+    ByteReader reader(it->bytes.data(), it->bytes.size(), what);
+    fix.restore_state(reader);
+    if (reader.left() != 0)
+      throw Error(fmt::format("{}: {} bytes left over (written by another version of the style?)", what,
+                              reader.left()));
+    fixes_restored_.push_back(fix.id());
+  }
+  saved_states_.erase(it);
+}
+
+// At the first run after a restart: name fixes that are on one side only, since a pipeline
+// that differs from the saved one does not continue the saved run exactly.
+void Simulation::warn_unmatched_states() {
+  if (!check_saved_states_) return;
+  check_saved_states_ = false;
+  for (const auto& s : saved_states_)
+    spdlog::warn("fix '{}' ({}) is in restart '{}' but not in the pipeline: its saved state is dropped", s.id,
+                 s.style, saved_states_source_);
+  for (const auto& f : fixes_)
+    if (std::find(fixes_restored_.begin(), fixes_restored_.end(), f->id()) == fixes_restored_.end())
+      spdlog::warn("fix '{}' ({}) is not in restart '{}': it starts afresh", f->id(), f->style(),
+                   saved_states_source_);
+  saved_states_.clear();
 }
 
 void Simulation::collect_boundaries() {

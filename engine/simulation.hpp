@@ -18,6 +18,25 @@
 
 namespace pbf {
 
+// Where a simulation's clock stands: time() = time_base + (step - step_base) dt, exact
+// multiples of dt since the last change of time step. A restart saves and restores it.
+struct Clock {
+  std::int64_t step = 0, step_base = 0;
+  double time_base = 0;
+};
+
+// A fix's state read from a restart, waiting for the script to declare that fix again.
+struct SavedFixState {
+  std::string id, style;
+  std::vector<unsigned char> bytes;
+};
+
+// The newest restart written or read: a run that blows up names it.
+struct RestartNote {
+  std::string path;
+  std::int64_t step = -1;
+};
+
 class Simulation {
  public:
   Simulation();
@@ -40,6 +59,16 @@ class Simulation {
 
   std::int64_t step() const { return step_; }
   double time() const { return time_base_ + static_cast<double>(step_ - step_base_) * dt_; }
+  Clock clock() const { return {step_, step_base_, time_base_}; }
+  void set_clock(const Clock& clock);
+  int reorder_interval() const { return reorder_every_; }
+
+  // --- restarts ---
+  // States from a restart: each goes to the fix of the same id (and style) when the script
+  // adds it; the first run warns about fixes on one side only.
+  void set_saved_states(std::vector<SavedFixState> states, const std::string& source);
+  const RestartNote& last_restart() const { return last_restart_; }
+  void set_last_restart(RestartNote note) { last_restart_ = std::move(note); }
 
   // --- the pipeline ---
   void add_fix(std::unique_ptr<Fix> fix);
@@ -71,6 +100,8 @@ class Simulation {
   friend class RunLoop;
   void check_inside_domain() const;
   void collect_boundaries();
+  void restore_saved_state(Fix& fix);
+  void warn_unmatched_states();
 
   Particles particles_;
   Domain domain_;
@@ -79,6 +110,12 @@ class Simulation {
   int reorder_every_ = 20;
   std::int64_t step_ = 0, step_base_ = 0;
   double time_base_ = 0;
+
+  std::vector<SavedFixState> saved_states_;
+  std::string saved_states_source_;
+  std::vector<std::string> fixes_restored_;  // ids given their saved state
+  bool check_saved_states_ = false;           // warn at the next run about fixes on one side only
+  RestartNote last_restart_;
 
   std::vector<std::unique_ptr<Fix>> fixes_;
   std::vector<std::unique_ptr<Compute>> computes_;

@@ -81,7 +81,7 @@ std::string StyleRegistry::help(const std::string& style) const {
   out += "Parameters (name, type, default, unit: description):\n";
   for (const auto& p : info->params)
     out += fmt::format("  {:<14} {:<8} {:<20} {:<8} {}\n", p.name, type_name(p.type),
-                       p.default_value ? format_value(*p.default_value) : "(required)",
+                       p.default_value ? format_value(*p.default_value) : p.optional ? "(optional)" : "(required)",
                        p.unit.empty() ? "-" : p.unit, p.doc);
   return out;
 }
@@ -100,7 +100,8 @@ std::string StyleRegistry::markdown_reference() const {
       out += "| parameter | type | default | unit | meaning |\n|---|---|---|---|---|\n";
       for (const auto& p : s.params)
         out += fmt::format("| `{}` | {} | {} | {} | {} |\n", p.name, type_name(p.type),
-                           p.default_value ? fmt::format("`{}`", format_value(*p.default_value)) : std::string("required"),
+                           p.default_value ? fmt::format("`{}`", format_value(*p.default_value))
+                           : std::string(p.optional ? "optional" : "required"),
                            p.unit.empty() ? "-" : p.unit, p.doc);
     }
   }

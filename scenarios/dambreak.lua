@@ -6,6 +6,7 @@
 -- (share/render_frames.py --box 0.5 0.05 0.4 makes pictures and a movie).
 --
 --   pbfengine run scenarios/dambreak.lua [-v particles=30000] [-v t_end=1.0] [-v out=out]
+--   pbfengine run scenarios/dambreak.lua -v restart=out/restart.400.restart   (continue to t_end)
 --
 -- Variables: particles (about how many, default 30000), t_end (simulated seconds, default
 -- 1.0), a (column width in m, default 0.1), out (frame directory, default "out"; "" for
@@ -13,6 +14,14 @@
 -- out/thermo.csv), iterations (default 4), vorticity (confinement epsilon, default 0.05),
 -- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false) and scorr_k to compare
 -- the solver variants of docs/physics.md (default: the styles' defaults, pbfengine help pbf).
+-- Output beyond the text frames: images (seconds between PNG pictures, out/image_*.png),
+-- movie (an mp4 path, 50 pictures per simulated second), vtk (seconds between ParaView
+-- frames, out/vtk/frame_*.vtu and out/vtk/frame.pvd).
+-- Restarts: out/restart.STEP.restart every restart_interval seconds (default 0.25; 0 for
+-- none) or every restart_every steps, the newest two kept, and one on Ctrl-C; restart=FILE
+-- continues from one (the scene comes from the file, the pipeline from this script, and the
+-- run goes on to t_end).
+package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
 local function flag(value, default)
   if value == nil then return default end
   return not (value == false or value == 0 or value == "false")
@@ -30,25 +39,43 @@ local h = 2 * s
 local depth = layers // 2 * s
 local dt = var.dt or 0.4 * h / math.sqrt(2 * g * 2 * a)   -- 0.4 h per step at the free-fall speed
 
-pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 4 * a}}   -- tall enough for the run-up on the far wall
-pbf.kernel_radius(h)
-pbf.timestep(dt)
-pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, 2 * a}, spacing = s}
+if var.restart then
+  local r = pbf.read_restart(var.restart)   -- domain, h, dt, particles, step and time
+  dt = pbf.timestep()
+  print(string.format("continuing from %s: step %d, t = %.4g s", var.restart, r.step, r.time))
+else
+  pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 4 * a}}   -- tall enough for the run-up on the far wall
+  pbf.kernel_radius(h)
+  pbf.timestep(dt)
+  pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, 2 * a}, spacing = s}
+end
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
 pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
 pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
 pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
-if out ~= "" then pbf.fix("frames", "dump/text", {dir = out, interval = var.interval or 0.02}) end
+-- Pictures, movie and ParaView frames on request (share/lua/outputs.lua).
+require("outputs").add(out, {color = "speed", min = 0, max = 2.5, direction = {1, 2.2, -0.9}, zoom = 1.4})
+if out ~= "" then
+  pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = var.interval or 0.02})
+  if var.restart_every then
+    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart", every = var.restart_every})
+  elseif (var.restart_interval or 0.25) > 0 then
+    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart", interval = var.restart_interval or 0.25})
+  end
+end
 
 pbf.compute("err", "density_error")
 pbf.compute("front", "front", {axis = "x", percentile = 99})
 pbf.compute("ke", "kinetic_energy")
 pbf.thermo{every = math.max(1, math.floor(0.01 / dt)),
-           csv = var.csv or (out ~= "" and out .. "/thermo.csv" or nil),
+           -- a continued run keeps the first run's CSV: its own starts at the restart's step
+           csv = var.csv or (out ~= "" and (var.restart and string.format("%s/thermo.%d.csv", out, pbf.step())
+                                                     or out .. "/thermo.csv") or nil),
            columns = {"step", "time", "front", "err.avg", "err.max", "ke"}}
 
-print(string.format("dam break: %d particles, a = %g m, spacing %.4g m, h %.4g m, dt %.4g s, %d steps",
-                    pbf.count(), a, s, h, dt, math.ceil(t_end / dt - 1e-9)))
-pbf.run(math.ceil(t_end / dt - 1e-9))
+local steps = math.max(0, math.ceil((t_end - pbf.time()) / dt - 1e-9))
+print(string.format("dam break: %d particles, a = %g m, h %.4g m, dt %.4g s, %d steps to t = %g s",
+                    pbf.count(), a, pbf.kernel_radius(), dt, steps, t_end))
+pbf.run(steps)

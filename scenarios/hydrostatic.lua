@@ -31,7 +31,7 @@ pbf.fix("gravity", "gravity", {})
 pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
 pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
 pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
-if var.out then pbf.fix("frames", "dump/text", {dir = var.out, interval = 0.05}) end
+if var.out then pbf.fix("frames", "dump/text", {path = var.out .. "/frame_*.txt", interval = 0.05}) end
 
 pbf.compute("err", "density_error")
 pbf.compute("ke", "kinetic_energy")

@@ -18,7 +18,7 @@ pbf.fix("pbf", "pbf", {iterations = iterations})
 pbf.fix("walls", "box", {})
 pbf.fix("vorticity", "vorticity", {})
 pbf.fix("xsph", "xsph", {})
-pbf.fix("frames", "dump/text", {dir = out, interval = scene.interval})
+pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = scene.interval})
 
 pbf.compute("err", "density_error")
 pbf.thermo{every = 100, columns = {"step", "time", "err.avg", "err.max"}}

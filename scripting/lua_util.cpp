@@ -56,6 +56,20 @@ Vec3 vec3(lua_State* L, int index, const char* what) {
   return v;
 }
 
+Names string_list(lua_State* L, int index, const char* what) {
+  index = lua_absindex(L, index);
+  Names names;
+  const auto n = static_cast<lua_Integer>(lua_rawlen(L, index));
+  for (lua_Integer k = 1; k <= n; ++k) {
+    lua_rawgeti(L, index, k);
+    const bool ok = lua_type(L, -1) == LUA_TSTRING;
+    if (ok) names.emplace_back(lua_tostring(L, -1));
+    lua_pop(L, 1);
+    if (!ok) throw Error(fmt::format("{} must be a list of names (strings)", what));
+  }
+  return names;
+}
+
 ParamValue param_value(lua_State* L, int index, const std::string& name) {
   switch (lua_type(L, index)) {
     case LUA_TNUMBER:
@@ -63,10 +77,16 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
       return static_cast<double>(lua_tonumber(L, index));
     case LUA_TBOOLEAN: return lua_toboolean(L, index) != 0;
     case LUA_TSTRING: return string(L, index, name.c_str());
-    case LUA_TTABLE: return vec3(L, index, fmt::format("parameter '{}'", name).c_str());
+    case LUA_TTABLE: {
+      lua_rawgeti(L, index, 1);
+      const bool names = lua_type(L, -1) == LUA_TSTRING;
+      lua_pop(L, 1);
+      if (names) return string_list(L, index, fmt::format("parameter '{}'", name).c_str());
+      return vec3(L, index, fmt::format("parameter '{}'", name).c_str());
+    }
     default:
       throw Error(fmt::format("parameter '{}': a {} is not a parameter value (number, boolean, string or "
-                              "{{x, y, z}})", name, luaL_typename(L, index)));
+                              "{{x, y, z}} or {{\"name\", ...}})", name, luaL_typename(L, index)));
   }
 }
 

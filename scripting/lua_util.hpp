@@ -18,7 +18,9 @@ double number(lua_State* L, int index, const char* what);
 std::int64_t integer(lua_State* L, int index, const char* what);
 std::string string(lua_State* L, int index, const char* what);
 Vec3 vec3(lua_State* L, int index, const char* what);
-// A Lua value converted to a parameter value (number, integer, boolean, string, {x,y,z}).
+Names string_list(lua_State* L, int index, const char* what);
+// A Lua value converted to a parameter value (number, integer, boolean, string, {x,y,z},
+// {"name", ...}).
 ParamValue param_value(lua_State* L, int index, const std::string& name);
 // The key/value pairs of the table at `index` (absent or nil: none), sorted by key.
 GivenParams table_params(lua_State* L, int index, const char* what);

@@ -3,7 +3,8 @@
 //   pbfengine help [STYLE] [--markdown]
 //   pbfengine --version
 // Exit codes: 0 success; 1 an error in the script, a scene file, a parameter or the run
-// (one line on stderr, "FILE:LINE: message"); 2 a bad command line.
+// (one line on stderr, "FILE:LINE: message"); 2 a bad command line; 130 a run stopped by
+// Ctrl-C after writing a restart (named on stderr).
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <omp.h>
@@ -12,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "engine/error.hpp"
+#include "engine/interrupt.hpp"
 #include "engine/simulation.hpp"
 #include "engine/style_registry.hpp"
 #include "scripting/script.hpp"
@@ -60,6 +62,10 @@ int run_script(const std::string& file, const std::vector<std::string>& assignme
     script.run_file(file);
     for (const auto& name : script.unread_variables())
       spdlog::warn("variable '{}' given with -v was never read by {}", name, file);
+  } catch (const pbf::Interrupted& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "%s\n", e.what());
+    return 130;  // the shell's code for a process ended by SIGINT
   } catch (const std::exception& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "%s\n", e.what());

@@ -3,118 +3,20 @@
 #include "scripting/script.hpp"
 
 #include <filesystem>
-#include <fmt/format.h>
-#include <lua.hpp>
-#include <map>
+#include <iterator>
 
-#include "engine/error.hpp"
-#include "engine/io/scene_file.hpp"
-#include "engine/lattice.hpp"
 #include "engine/simulation.hpp"
 #include "engine/style_registry.hpp"
 #include "scripting/lua_callback.hpp"
-#include "scripting/lua_util.hpp"
+#include "scripting/script_state.hpp"
 
 namespace pbf {
 
-struct Script::State {
-  Simulation& sim;
-  lua_State* L = nullptr;
-  bool running = false;
-  std::map<std::string, bool> variable_read;
-
-  // Changing the scene or the pipeline from a callback inside a run is not allowed.
-  void not_running(const char* function) const {
-    if (running) throw Error(fmt::format("{} cannot be called during a run (from a pbf.every callback)", function));
-  }
-};
-
 namespace {
 
+using lua::state;
+using lua::table_arg;
 using State = Script::State;
-
-State& state(lua_State* L) { return *static_cast<State*>(lua_touserdata(L, lua_upvalueindex(1))); }
-
-// Checks a table argument against a schema, like style parameters.
-Params table_arg(lua_State* L, int index, const char* function, const std::vector<ParamSpec>& schema) {
-  if (lua_type(L, index) != LUA_TTABLE) throw Error(fmt::format("{} takes a table {{name = value, ...}}", function));
-  return Params(function, schema, lua::table_params(L, index, function));
-}
-
-void push_vec3(lua_State* L, const double v[3]) {
-  lua_createtable(L, 3, 0);
-  for (int k = 0; k < 3; ++k) {
-    lua_pushnumber(L, v[k]);
-    lua_rawseti(L, -2, k + 1);
-  }
-}
-
-int l_domain(lua_State* L) {
-  State& S = state(L);
-  if (!lua_isnoneornil(L, 1)) {
-    S.not_running("pbf.domain");
-    const Params p = table_arg(L, 1, "pbf.domain",
-                               {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
-                                {"hi", ParamType::Vector3, std::nullopt, "m", ""}});
-    Domain d;
-    for (int a = 0; a < 3; ++a) {
-      d.lo[a] = p.vec3("lo")[a];
-      d.hi[a] = p.vec3("hi")[a];
-    }
-    S.sim.set_domain(d);
-  }
-  lua_createtable(L, 0, 2);
-  push_vec3(L, S.sim.domain().lo);
-  lua_setfield(L, -2, "lo");
-  push_vec3(L, S.sim.domain().hi);
-  lua_setfield(L, -2, "hi");
-  return 1;
-}
-
-// Getter/setter pairs: pbf.kernel_radius(h) sets, pbf.kernel_radius() reads.
-template <double (Simulation::*Get)() const, void (Simulation::*Set)(double)>
-int l_setting(lua_State* L) {
-  State& S = state(L);
-  if (!lua_isnoneornil(L, 1)) {
-    S.not_running("pbf.kernel_radius, pbf.timestep and pbf.rest_density");
-    (S.sim.*Set)(lua::number(L, 1, "the value"));
-  }
-  lua_pushnumber(L, (S.sim.*Get)());
-  return 1;
-}
-
-int l_lattice(lua_State* L) {
-  State& S = state(L);
-  S.not_running("pbf.lattice");
-  const Params p = table_arg(L, 1, "pbf.lattice",
-                             {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
-                              {"hi", ParamType::Vector3, std::nullopt, "m", ""},
-                              {"spacing", ParamType::Real, std::nullopt, "m", ""},
-                              {"velocity", ParamType::Vector3, Vec3{0, 0, 0}, "m/s", ""}});
-  const Vec3 lo = p.vec3("lo"), hi = p.vec3("hi"), v = p.vec3("velocity");
-  lua_pushinteger(L, static_cast<lua_Integer>(add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data())));
-  return 1;
-}
-
-int l_read_scene(lua_State* L) {
-  State& S = state(L);
-  S.not_running("pbf.read_scene");
-  if (S.sim.particles().size() > 0)
-    throw Error("pbf.read_scene: the scene file sets the domain, so read it before creating any particle");
-  const SceneFile scene = read_scene_file(lua::string(L, 1, "pbf.read_scene: the path"));
-  const double mass = load_scene(S.sim, scene);
-  lua_createtable(L, 0, 7);
-  const std::pair<const char*, double> fields[] = {{"dt", scene.dt},         {"h", scene.h},
-                                                   {"L", scene.L},           {"interval", scene.interval},
-                                                   {"t_final", scene.t_final}, {"mass", mass}};
-  for (const auto& [name, value] : fields) {
-    lua_pushnumber(L, value);
-    lua_setfield(L, -2, name);
-  }
-  lua_pushinteger(L, static_cast<lua_Integer>(scene.count));
-  lua_setfield(L, -2, "count");
-  return 1;
-}
 
 int l_fix(lua_State* L) {
   State& S = state(L);
@@ -231,7 +133,12 @@ int l_run(lua_State* L) {
     ~Running() { flag = false; }
   } guard{S.running};
   S.running = true;
-  S.sim.run(steps);
+  try {
+    S.sim.run(steps);
+  } catch (const Interrupted& e) {
+    S.interrupted = e;  // passes through Lua as an error, then ends the script as itself
+    throw;
+  }
   return 0;
 }
 
@@ -292,18 +199,13 @@ int l_var_pairs(lua_State* L) {
 
 }  // namespace
 
-Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}}) {
+Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}, std::nullopt}) {
   lua_State* L = luaL_newstate();
   if (!L) throw Error("cannot create a Lua state (out of memory)");
   state_->L = L;
   luaL_openlibs(L);
-  const luaL_Reg functions[] = {
-      {"domain", lua::guarded<l_domain>},
-      {"kernel_radius", lua::guarded<l_setting<&Simulation::kernel_radius, &Simulation::set_kernel_radius>>},
-      {"timestep", lua::guarded<l_setting<&Simulation::timestep, &Simulation::set_timestep>>},
-      {"rest_density", lua::guarded<l_setting<&Simulation::rest_density, &Simulation::set_rest_density>>},
-      {"lattice", lua::guarded<l_lattice>},
-      {"read_scene", lua::guarded<l_read_scene>},
+  std::vector<luaL_Reg> functions = lua::scene_functions();
+  const luaL_Reg pipeline[] = {
       {"fix", lua::guarded<l_fix>},
       {"unfix", lua::guarded<l_unfix>},
       {"compute", lua::guarded<l_compute>},
@@ -315,11 +217,12 @@ Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}}) {
       {"step", lua::guarded<l_step>},
       {"time", lua::guarded<l_time>},
       {"count", lua::guarded<l_count>},
-      {"timing", lua::guarded<l_timing>},
-      {nullptr, nullptr}};
+      {"timing", lua::guarded<l_timing>}};
+  functions.insert(functions.end(), std::begin(pipeline), std::end(pipeline));
+  functions.push_back({nullptr, nullptr});
   lua_newtable(L);
   lua_pushlightuserdata(L, state_.get());
-  luaL_setfuncs(L, functions, 1);
+  luaL_setfuncs(L, functions.data(), 1);
   lua_pushstring(L, PBF_VERSION);
   lua_setfield(L, -2, "version");
   lua_setglobal(L, "pbf");
@@ -380,6 +283,7 @@ void Script::run_file(const std::string& path) {
   if (status != LUA_OK) {
     std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error object is not a string";
     lua_pop(L, 1);
+    if (state_->interrupted) throw *state_->interrupted;
     throw Error(full_path(message), true);
   }
 }

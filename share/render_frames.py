@@ -1,22 +1,26 @@
 #!/usr/bin/env python3
-"""Render pbfengine text frames to PNG images (and optionally an mp4): the visualiser
-of the original study, rebuilt.
+"""Render pbfengine frames to PNG images (and optionally an mp4): the visualiser of the
+original study, rebuilt.
 
 Usage:
     python3 share/render_frames.py out/                       # PNGs in out/png/
     python3 share/render_frames.py out/ --interval 0.02 --movie dambreak.mp4
     python3 share/render_frames.py out/ --every 5 --L 1.0 --vmax 3 --view 25 -70
+    python3 share/render_frames.py out/frames.pvd --movie dambreak.mp4
 
 Reads FRAMES_DIR/frame_00000.txt, frame_00001.txt, ... (line 1: the integer N, then N
-lines 'x y z vx vy vz') and draws each frame as a 3D scatter (z up) coloured by the
+lines 'x y z vx vy vz'); or, when the directory has no text frames (or with --format
+vtu), FRAMES_DIR/frame_NNNNN.vtu; or the .vtu files that a ParaView collection (.pvd)
+lists, with their times. A .vtu frame gives the Points and the PointData array
+'velocity' (zero if absent). Each frame is drawn as a 3D scatter (z up) coloured by the
 speed |v|, with a colour bar. Every image uses the same axes ([0,L]^3, L from --L or
 the largest coordinate seen, rounded up) and the same colour range (0 to --vmax, or to
 the largest speed in the frames rendered), so a movie does not flicker.
 
 Images are numbered consecutively, OUT/img_00000.png, img_00001.png, ... (so ffmpeg
 finds a gapless sequence even with --every); the title gives the frame number, and
-the time k * interval when --interval is given. Images left over from an earlier,
-longer run in OUT are removed so they cannot end up in the movie.
+the time: k * interval when --interval is given, else the .pvd's time. Images left
+over from an earlier, longer run in OUT are removed so they cannot end up in the movie.
 
 Needs numpy and matplotlib (on Debian: apt install python3-numpy python3-matplotlib,
 then run with /usr/bin/python3), and ffmpeg for --movie.
@@ -36,11 +40,13 @@ try:
     matplotlib.use("Agg")  # no display needed; must precede pyplot
     import matplotlib.pyplot as plt
     from matplotlib import cm, colors
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import vtu  # share/vtu.py, beside this script
 except ImportError as e:
     sys.exit(f"render_frames.py: error: {e}; install python3-numpy and python3-matplotlib "
              "(Debian) and run with /usr/bin/python3")
 
-FRAME_RE = re.compile(r"^frame_(\d{5})\.txt$")
+FRAME_RE = re.compile(r"^frame_(\d{5})\.(txt|vtu)$")
 IMG_RE = re.compile(r"^img_(\d{5})\.png$")
 
 
@@ -48,22 +54,50 @@ def fail(msg):
     sys.exit(f"render_frames.py: error: {msg}")
 
 
-def list_frames(directory):
-    """Sorted (index, path) of the frame files in directory."""
-    if not os.path.isdir(directory):
-        fail(f"frames directory {directory!r} does not exist or is not a directory")
-    found = []
-    for path in glob.glob(os.path.join(directory, "frame_*.txt")):
+def list_frames(source, fmt="auto"):
+    """Sorted (index, path, time or None) of the frames in a directory or a .pvd."""
+    if source.endswith(".pvd") and os.path.isfile(source):
+        try:
+            return [(k, path, t) for k, (t, path) in enumerate(vtu.read_pvd(source))]
+        except vtu.VtuError as e:
+            fail(str(e))
+    if not os.path.isdir(source):
+        fail(f"frames directory {source!r} does not exist or is not a directory (or a .pvd file)")
+    found = {"txt": [], "vtu": []}
+    for path in glob.glob(os.path.join(source, "frame_*.*")):
         m = FRAME_RE.search(os.path.basename(path))
         if m:
-            found.append((int(m.group(1)), path))
-    if not found:
-        fail(f"no frame_NNNNN.txt files in {directory!r}")
-    return sorted(found)
+            found[m.group(2)].append((int(m.group(1)), path, None))
+    if fmt == "auto":  # text frames first, as before .vtu frames existed
+        fmt = "txt" if found["txt"] or not found["vtu"] else "vtu"
+        if found["txt"] and found["vtu"]:
+            print(f"render_frames.py: note: {source!r} also holds .vtu frames; "
+                  "--format vtu shows them", file=sys.stderr)
+    if not found[fmt]:
+        fail(f"no frame_NNNNN.{fmt} files in {source!r}")
+    return sorted(found[fmt])
+
+
+def read_vtu_frame(path):
+    """(N, 6) array x y z vx vy vz of a .vtu frame; velocity zero if it has none."""
+    try:
+        points, arrays = vtu.read_vtu(path)
+    except vtu.VtuError as e:
+        fail(str(e))
+    v = arrays.get("velocity")
+    if v is None or v.shape != points.shape:
+        if not getattr(read_vtu_frame, "warned", False):
+            print(f"render_frames.py: note: {path} has no 3-component 'velocity'; "
+                  "speeds shown as 0", file=sys.stderr)
+            read_vtu_frame.warned = True
+        v = np.zeros_like(points)
+    return np.hstack([points, v])
 
 
 def read_frame(path):
     """(N, 6) float array of one frame; checks the count against line 1."""
+    if path.endswith(".vtu"):
+        return read_vtu_frame(path)
     try:
         with open(path) as f:
             head = f.readline().strip()
@@ -96,8 +130,12 @@ def parse_args(argv):
     p = argparse.ArgumentParser(
         description=__doc__.split("\n\n")[0], epilog=__doc__.split("\n\n", 1)[1],
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("frames_dir", help="directory holding frame_NNNNN.txt files")
-    p.add_argument("--out", help="directory for the PNGs (default FRAMES_DIR/png)")
+    p.add_argument("frames_dir",
+                   help="directory holding frame_NNNNN.txt (or .vtu) files, or a .pvd")
+    p.add_argument("--format", choices=("auto", "txt", "vtu"), default="auto",
+                   help="which frames of the directory: auto (text ones if any, else .vtu)")
+    p.add_argument("--out", help="directory for the PNGs (default FRAMES_DIR/png, or png/ "
+                   "beside the .pvd)")
     p.add_argument("--every", type=int, default=1, metavar="K", help="render every Kth frame")
     p.add_argument("--L", type=float, help="domain side; default: largest coordinate, rounded up")
     p.add_argument("--box", type=float, nargs=3, metavar=("X", "Y", "Z"),
@@ -131,13 +169,14 @@ def parse_args(argv):
 
 def main(argv=None):
     args = parse_args(argv)
-    frames = list_frames(args.frames_dir)[::args.every]
+    frames = list_frames(args.frames_dir, args.format)[::args.every]
     ffmpeg = shutil.which("ffmpeg")
     if args.movie and not ffmpeg:  # fail before spending minutes on images
         fail("--movie needs ffmpeg, which is not on PATH (Debian: apt install ffmpeg)")
     if args.movie and not os.path.isdir(os.path.dirname(os.path.abspath(args.movie))):
         fail(f"the directory for --movie {args.movie!r} does not exist")
-    out = args.out or os.path.join(args.frames_dir, "png")
+    src = args.frames_dir if os.path.isdir(args.frames_dir) else os.path.dirname(args.frames_dir)
+    out = args.out or os.path.join(src, "png")
     try:
         os.makedirs(out, exist_ok=True)
     except OSError as e:
@@ -147,7 +186,7 @@ def main(argv=None):
     L, vmax = args.L, args.vmax
     if L is None or vmax is None:
         cmax, smax = 0.0, 0.0
-        for _, path in frames:
+        for _, path, _ in frames:
             d = read_frame(path)
             if len(d):
                 cmax = max(cmax, float(d[:, :3].max()))
@@ -175,7 +214,7 @@ def main(argv=None):
                  label="speed |v| (m/s)")
     suptitle = fig.suptitle("", y=0.97)
     scatter = None
-    for i, (k, path) in enumerate(frames):
+    for i, (k, path, time) in enumerate(frames):
         d = read_frame(path)
         n = len(d)
         d = d[::max(1, math.ceil(n / args.max_points))]  # even, deterministic subsample
@@ -188,6 +227,8 @@ def main(argv=None):
         title = f"frame {k}"
         if args.interval:
             title += f"   t = {k * args.interval:.4g} s"
+        elif time is not None:
+            title += f"   t = {time:.4g} s"
         shown = f", {len(d)} drawn" if len(d) < n else ""
         suptitle.set_text(f"{title}   ({n} particles{shown})")
         fig.savefig(os.path.join(out, f"img_{i:05d}.png"))

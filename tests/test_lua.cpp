@@ -129,7 +129,7 @@ TEST(Lua, ErrorInACallbackNamesTheCallbackLine) {
 }
 
 TEST(Lua, RunsContinueAcrossCallsWithoutRepeatingFrames) {
-  Script s(kScene + "pbf.fix('walls', 'box', {})\npbf.fix('d', 'dump/text', {dir = var.out, every = 5})\n"
+  Script s(kScene + "pbf.fix('walls', 'box', {})\npbf.fix('d', 'dump/text', {path = var.out .. '/frame_*.txt', every = 5})\n"
                     "pbf.run(5)\npbf.run(5)\npbf.unfix('walls')\npbf.fix('walls', 'box', {friction = 1})\npbf.run(5)\n");
   const auto out = s.dir / "frames";
   auto r = run_engine("run " + s.path.string() + " -v out=" + out.string());

@@ -42,7 +42,7 @@ TEST(Params, IllTypedValuesAreRefused) {
   EXPECT_NE(error_of("pbf", {{"iterations", 2.5}}).find("'iterations'"), std::string::npos);
   EXPECT_NE(error_of("gravity", {{"acceleration", 9.81}}).find("must be of type vector"), std::string::npos);
   EXPECT_NE(error_of("pbf", {{"one_sided", std::int64_t{1}}}).find("must be of type boolean"), std::string::npos);
-  EXPECT_NE(error_of("dump/text", {{"dir", 3.0}}).find("must be of type string"), std::string::npos);
+  EXPECT_NE(error_of("dump/text", {{"path", 3.0}}).find("must be of type string"), std::string::npos);
 }
 
 TEST(Params, IntegralNumbersAreIntegersAndIntegersAreNumbers) {

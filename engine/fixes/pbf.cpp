@@ -48,7 +48,7 @@ class PositionBasedFluid : public Fix {
 
   void init(Simulation& sim) override {
     auto& P = sim.particles();
-    lambda_ = P.declare({"lambda", 1, "PBF constraint multiplier lambda (m^2)"});
+    lambda_ = P.declare({"lambda", 1, "PBF constraint multiplier lambda (m^2)", false});
     fields_ = {"lambda"};
     const double mean_mass =
         deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) / double(P.size());

@@ -18,6 +18,10 @@ void register_box(StyleRegistry&);
 void register_vorticity(StyleRegistry&);
 void register_xsph(StyleRegistry&);
 void register_dump_text(StyleRegistry&);
+void register_dump_vtk(StyleRegistry&);
+void register_dump_image(StyleRegistry&);
+void register_dump_movie(StyleRegistry&);
+void register_restart(StyleRegistry&);
 
 void register_compute_density(StyleRegistry&);
 void register_compute_density_error(StyleRegistry&);

@@ -11,6 +11,7 @@
 #include "engine/error.hpp"
 #include "engine/fixes/styles.hpp"
 #include "engine/simulation.hpp"
+#include "engine/velocity_curl.hpp"
 
 namespace pbf {
 
@@ -26,7 +27,7 @@ class VorticityConfinement : public Fix {
   bool needs_neighbors() const override { return true; }
 
   void init(Simulation& sim) override {
-    omega_ = sim.particles().declare({"vorticity", 3, "vorticity, curl of the velocity (1/s)"});
+    omega_ = sim.particles().declare({"vorticity", 3, "vorticity, curl of the velocity (1/s)", false});
     fields_ = {"vorticity"};
   }
 
@@ -40,26 +41,7 @@ class VorticityConfinement : public Fix {
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *wx = P.data(omega_, 0), *wy = P.data(omega_, 1), *wz = P.data(omega_, 2);
     magnitude_.resize(n);
-
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      real w[3] = {0, 0, 0};
-      const std::uint32_t* nb = grid.neighbors(i);
-      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-        const std::uint32_t j = nb[k];
-        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-        const real g = m[j] / rho[j] * K.spiky_grad_factor(dx * dx + dy * dy + dz * dz);
-        const real gx = g * dx, gy = g * dy, gz = g * dz;
-        const real ux = vx[j] - vx[i], uy = vy[j] - vy[i], uz = vz[j] - vz[i];
-        w[0] += gy * uz - gz * uy;
-        w[1] += gz * ux - gx * uz;
-        w[2] += gx * uy - gy * ux;
-      }
-      wx[i] = w[0];
-      wy[i] = w[1];
-      wz[i] = w[2];
-      magnitude_[i] = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-    }
+    velocity_curl(sim, rho, wx, wy, wz, magnitude_.data());
 
     for (auto& c : dv_) c.resize(n);
     const real scale = real(epsilon_ * sim.kernel_radius() * sim.timestep());

@@ -9,6 +9,7 @@
 
 #include "engine/error.hpp"
 #include "engine/mass.hpp"
+#include "engine/io/load_particles.hpp"
 #include "engine/simulation.hpp"
 
 namespace pbf {
@@ -133,25 +134,12 @@ double load_scene(Simulation& sim, const SceneFile& scene) {
   sim.set_kernel_radius(scene.h);
   sim.set_timestep(scene.dt);
   const std::size_t n = static_cast<std::size_t>(scene.count);
-  std::vector<real> x(n), y(n), z(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = real(scene.particles[6 * i]);
-    y[i] = real(scene.particles[6 * i + 1]);
-    z[i] = real(scene.particles[6 * i + 2]);
+  std::vector<double> column[6];
+  for (int c = 0; c < 6; ++c) {
+    column[c].resize(n);
+    for (std::size_t i = 0; i < n; ++i) column[c][i] = scene.particles[6 * i + static_cast<std::size_t>(c)];
   }
-  const MassEstimate m =
-      mass_from_positions(x.data(), y.data(), z.data(), n, domain, sim.kernels(), sim.rest_density());
-  if (m.interior == 0)
-    spdlog::warn("{}: no particle is at least h = {} from every face; mass from the nearest-neighbour spacing {:.4g}",
-                 scene.path, scene.h, m.spacing);
-  for (std::size_t i = 0; i < n; ++i) {
-    const real v[3] = {real(scene.particles[6 * i + 3]), real(scene.particles[6 * i + 4]),
-                       real(scene.particles[6 * i + 5])};
-    const real p[3] = {x[i], y[i], z[i]};
-    sim.particles().add(p, v, real(m.mass));
-  }
-  sim.positions_changed();
-  return m.mass;
+  return add_particles(sim, column[0], column[1], column[2], column[3], column[4], column[5], {}, scene.path).mass;
 }
 
 }  // namespace pbf

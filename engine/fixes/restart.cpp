@@ -1,0 +1,99 @@
+// restart: writes a restart file every K steps or every T simulated seconds, PATH with '*'
+// replaced by the step, keeping the newest `keep` files. Each file is written under a
+// temporary name and renamed when complete, so the newest one on disk is always whole.
+// On Ctrl-C the run loop asks this fix for a restart of the current step.
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "engine/error.hpp"
+#include "engine/fixes/styles.hpp"
+#include "engine/io/bytes.hpp"
+#include "engine/io/path_pattern.hpp"
+#include "engine/io/restart.hpp"
+#include "engine/output_schedule.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class PeriodicRestart : public Fix {
+ public:
+  PeriodicRestart(const std::string& id, const Params& p)
+      : Fix(id, "restart"), path_(p.string("path"), "the step number"), keep_(p.integer("keep")), schedule_(p, false) {
+    if (keep_ < 1) throw Error(fmt::format("parameter 'keep' must be >= 1, got {}", keep_));
+  }
+
+  std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
+
+  void init(Simulation& sim) override {
+    path_.create_directory();
+    schedule_.start(sim);
+  }
+
+  void end_of_step(Simulation& sim) override {
+    if (schedule_.due(sim)) write(sim);
+  }
+
+  std::optional<std::string> write_restart_now(Simulation& sim) override {
+    if (written_.empty() || written_.back().first != sim.step()) write(sim);
+    return written_.back().second;
+  }
+
+  void save_state(ByteWriter& w) const override {
+    schedule_.save(w);
+    w.put<std::uint64_t>(written_.size());
+    for (const auto& [step, path] : written_) {
+      w.put(step);
+      w.put_string(path);
+    }
+  }
+
+  void restore_state(ByteReader& r) override {
+    schedule_.restore(r);
+    const auto count = r.get<std::uint64_t>();
+    r.require(count, 2 * sizeof(std::uint64_t));
+    written_.resize(count);
+    for (auto& [step, path] : written_) {
+      step = r.get<std::int64_t>();
+      path = r.get_string();
+    }
+  }
+
+ private:
+  void write(Simulation& sim) {
+    const std::string path = path_.with(std::to_string(sim.step()));
+    // The state saved in the file already counts this file, as the run goes on after it.
+    schedule_.done(sim);
+    written_.emplace_back(sim.step(), path);
+    write_restart(sim, path);
+    // Only now that the new file is complete, the oldest go.
+    while (written_.size() > static_cast<std::size_t>(keep_)) {
+      std::error_code ec;
+      if (written_.front().second != path) std::filesystem::remove(written_.front().second, ec);
+      written_.erase(written_.begin());
+    }
+  }
+
+  PathPattern path_;
+  std::int64_t keep_;
+  OutputSchedule schedule_;
+  std::vector<std::pair<std::int64_t, std::string>> written_;  // (step, path), oldest first
+};
+
+}  // namespace
+
+void register_restart(StyleRegistry& r) {
+  auto params = OutputSchedule::params("restarts");
+  params.insert(params.begin(),
+                {{"path", ParamType::String, std::string("run.*.restart"), "",
+                  "file name pattern; '*' becomes the step number (directories are created)"},
+                 {"keep", ParamType::Integer, std::int64_t{2}, "", "how many of the newest restarts to keep"}});
+  r.add({"restart", StyleKind::fix, "writes restart files periodically (and on Ctrl-C), keeping the newest",
+         std::move(params), [](const std::string& id, const Params& p) { return std::make_unique<PeriodicRestart>(id, p); },
+         nullptr});
+}
+
+}  // namespace pbf

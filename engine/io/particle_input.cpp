@@ -1,0 +1,123 @@
+#include "engine/io/particle_input.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "engine/io/csv.hpp"
+#include "engine/io/vtu.hpp"
+
+namespace pbf {
+
+ParticleTable read_particle_file(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".vtu") return read_vtu(path);
+  if (ext == ".csv") return read_csv(path);
+  throw Error(fmt::format("{}: unsupported particle file type '{}'; supported: .vtu (VTK UnstructuredGrid), "
+                          ".csv (a header line, then one row per particle)",
+                          path, ext.empty() ? "(no extension)" : ext),
+              true);
+}
+
+namespace {
+
+// Finds a vector quantity as one 3-component column or three scalar columns, and marks
+// the columns it took in `used`. Returns false if the file has neither.
+class Picker {
+ public:
+  explicit Picker(const ParticleTable& t) : table_(t), used_(t.columns.size(), false) {
+    for (const auto& c : t.columns)
+      if (c.values.size() != t.count * c.components)
+        fail(fmt::format("column '{}' holds {} values, expected {} ({} particles x {} components)", c.name,
+                         c.values.size(), t.count * c.components, t.count, c.components));
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Error(fmt::format("{}: {}", table_.path, message), true);
+  }
+
+  const Column* take(const std::string& name, int components) {
+    const Column* c = table_.find(name);
+    if (!c) return nullptr;
+    if (c->components != components)
+      fail(fmt::format("column '{}' has {} components, expected {}", name, c->components, components));
+    used_[c - table_.columns.data()] = true;
+    return c;
+  }
+
+  bool vector(const std::string& name, const char* const scalars[3], std::vector<double>* out[3]) {
+    const std::size_t n = table_.count;
+    if (const Column* v = take(name, 3)) {
+      for (int d = 0; d < 3; ++d) {
+        out[d]->resize(n);
+        for (std::size_t i = 0; i < n; ++i) (*out[d])[i] = v->values[3 * i + d];
+      }
+      return true;
+    }
+    const Column* s[3];
+    int found = 0;
+    for (int d = 0; d < 3; ++d) found += (s[d] = table_.find(scalars[d])) != nullptr;
+    if (found == 0) return false;
+    if (found < 3)  // half a vector is a typo or a wrong file, not "absent"
+      fail(fmt::format("columns {}, {}, {} go together, but {} is missing", scalars[0], scalars[1], scalars[2],
+                       scalars[s[0] ? (s[1] ? 2 : 1) : 0]));
+    for (int d = 0; d < 3; ++d) *out[d] = take(scalars[d], 1)->values;
+    return true;
+  }
+
+  std::vector<std::string> unused() const {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < used_.size(); ++k)
+      if (!used_[k]) names.push_back(table_.columns[k].name);
+    return names;
+  }
+
+  std::string found() const {
+    std::vector<std::string> names;
+    for (const auto& c : table_.columns)
+      names.push_back(c.components == 1 ? c.name : fmt::format("{} ({} components)", c.name, c.components));
+    return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+  }
+
+ private:
+  const ParticleTable& table_;
+  std::vector<bool> used_;
+};
+
+}  // namespace
+
+ParticleInput interpret_particles(const ParticleTable& table) {
+  Picker pick(table);
+  ParticleInput in;
+  static const char* const xyz[3] = {"x", "y", "z"};
+  static const char* const vxyz[3] = {"vx", "vy", "vz"};
+  std::vector<double>* position[3] = {&in.x, &in.y, &in.z};
+  std::vector<double>* velocity[3] = {&in.vx, &in.vy, &in.vz};
+  if (!pick.vector("position", xyz, position))
+    pick.fail(fmt::format("no particle positions: expected a 3-component column 'position' or columns x, y, z; "
+                          "found: {}", pick.found()));
+  if (table.count == 0) pick.fail("the file holds no particles");
+  if (!pick.vector("velocity", vxyz, velocity))
+    for (auto* v : velocity) v->assign(table.count, 0.0);
+  if (const Column* m = pick.take("mass", 1)) in.mass = m->values;
+  in.ignored = pick.unused();
+
+  for (std::size_t i = 0; i < table.count; ++i) {
+    if (!std::isfinite(in.x[i]) || !std::isfinite(in.y[i]) || !std::isfinite(in.z[i]))
+      pick.fail(fmt::format("particle {} (0-based, in file order) has position ({}, {}, {}), not finite", i, in.x[i],
+                            in.y[i], in.z[i]));
+    if (!std::isfinite(in.vx[i]) || !std::isfinite(in.vy[i]) || !std::isfinite(in.vz[i]))
+      pick.fail(fmt::format("particle {} (0-based, in file order) has velocity ({}, {}, {}), not finite", i, in.vx[i],
+                            in.vy[i], in.vz[i]));
+    if (!in.mass.empty() && !(std::isfinite(in.mass[i]) && in.mass[i] > 0))
+      pick.fail(fmt::format("particle {} (0-based, in file order) has mass {}; masses must be positive and finite", i,
+                            in.mass[i]));
+  }
+  return in;
+}
+
+}  // namespace pbf

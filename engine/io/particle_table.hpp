@@ -1,0 +1,30 @@
+#pragma once
+// A particle file read into memory, before it is interpreted as particles: named columns
+// of doubles, one row per particle. Readers (vtu.hpp, csv.hpp) fill it; particle_input.hpp
+// turns it into positions, velocities and masses.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pbf {
+
+struct Column {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;  // count * components, interleaved (x0 y0 z0 x1 y1 z1 ...)
+};
+
+struct ParticleTable {
+  std::string path;  // the file it came from, for error messages
+  std::size_t count = 0;
+  std::vector<Column> columns;
+
+  // The column called `name`, or null.
+  const Column* find(const std::string& name) const {
+    for (const auto& c : columns)
+      if (c.name == name) return &c;
+    return nullptr;
+  }
+};
+
+}  // namespace pbf

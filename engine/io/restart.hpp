@@ -1,0 +1,41 @@
+#pragma once
+// Restart files: everything a run needs to continue bit for bit. Binary, in one piece:
+//
+//   header (32 bytes): magic "\x89PBFRST\n", format version (u32), byte-order mark
+//   0x01020304 (u32), size of a real in bytes (u32), CRC-32 of the payload (u32),
+//   payload size in bytes (u64)
+//   payload: domain lo[3] hi[3], kernel radius, time step, rest density (f64); the clock
+//   (step, step_base i64, time_base f64); the particle count N (u64), ids (N i64); the
+//   fields (count u32, then name, components u32, N reals per component); the fixes' saved
+//   states (count u32, then id, style, size u64, bytes). Strings are u64 length + bytes.
+//
+// Particles are saved in memory order, so the neighbour lists, and with them every sum,
+// come out in the same order after a read.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace pbf {
+
+class Simulation;
+
+constexpr std::uint32_t kRestartVersion = 1;
+
+struct RestartSummary {
+  std::int64_t step = 0;
+  double time = 0;
+  std::size_t particles = 0;
+  std::size_t bytes = 0;  // file size
+  double seconds = 0;     // wall time the write or read took
+};
+
+// Writes through PATH.tmp, flushed to disk, then an atomic rename: a crash or a full disk
+// never leaves a damaged file under PATH. Records PATH as the simulation's last restart.
+RestartSummary write_restart(Simulation& sim, const std::string& path);
+
+// Restores the domain, kernel radius, time step, rest density, clock, particles and saved
+// fields, and keeps the fixes' states for the fixes the script declares next. A damaged,
+// truncated, foreign or other-precision file is an error and leaves `sim` as it was.
+RestartSummary read_restart(Simulation& sim, const std::string& path);
+
+}  // namespace pbf

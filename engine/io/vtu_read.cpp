@@ -1,0 +1,310 @@
+// The .vtu reader (the writer is in vtu.cpp).
+#include "engine/io/vtu.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <iterator>
+#include <pugixml.hpp>
+#include <string_view>
+
+#include "engine/error.hpp"
+
+namespace pbf {
+
+static_assert(std::endian::native == std::endian::little, "vtu_read.cpp assumes a little-endian machine");
+
+namespace {
+
+struct TypeInfo {
+  const char* name;
+  std::size_t size;
+  void (*convert)(const char* bytes, std::size_t count, double* out);
+};
+
+template <class T>
+void convert(const char* bytes, std::size_t count, double* out) {
+  for (std::size_t i = 0; i < count; ++i) {
+    T v;
+    std::memcpy(&v, bytes + i * sizeof(T), sizeof(T));  // no alignment in the file
+    out[i] = static_cast<double>(v);
+  }
+}
+
+constexpr TypeInfo kTypes[] = {
+    {"Int8", 1, convert<std::int8_t>},     {"UInt8", 1, convert<std::uint8_t>},
+    {"Int16", 2, convert<std::int16_t>},   {"UInt16", 2, convert<std::uint16_t>},
+    {"Int32", 4, convert<std::int32_t>},   {"UInt32", 4, convert<std::uint32_t>},
+    {"Int64", 8, convert<std::int64_t>},   {"UInt64", 8, convert<std::uint64_t>},
+    {"Float32", 4, convert<float>},        {"Float64", 8, convert<double>}};
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+class VtuReader {
+ public:
+  explicit VtuReader(const std::string& path) : path_(path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("cannot open the file");
+    bytes_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) fail("cannot read the file");
+    if (bytes_.empty()) fail("empty file");
+  }
+
+  ParticleTable read() {
+    parse_head();
+    const auto root = doc_.child("VTKFile");
+    if (!root) fail("not a VTK XML file: no <VTKFile> element");
+    const std::string type = root.attribute("type").value();
+    if (type != "UnstructuredGrid") fail(fmt::format("not an UnstructuredGrid (VTKFile type=\"{}\")", type));
+    if (*root.attribute("compressor").value())
+      fail(fmt::format("compressed files (compressor=\"{}\") are not supported; re-save it uncompressed "
+                       "(ParaView: Save Data, Compressor Type: None)", root.attribute("compressor").value()));
+    const std::string order = root.attribute("byte_order").as_string("LittleEndian");
+    if (order != "LittleEndian") fail(fmt::format("byte_order \"{}\" is not supported, only LittleEndian", order));
+    const std::string header = root.attribute("header_type").as_string("UInt32");
+    if (header != "UInt32" && header != "UInt64")
+      fail(fmt::format("header_type \"{}\" is not supported (UInt32 or UInt64)", header));
+    header_size_ = header == "UInt64" ? 8 : 4;
+
+    const auto grid = root.child("UnstructuredGrid");
+    if (!grid) fail("no <UnstructuredGrid> element");
+    const auto pieces = std::distance(grid.children("Piece").begin(), grid.children("Piece").end());
+    if (pieces != 1) fail(fmt::format("{} <Piece> elements; only single-piece files are supported", pieces));
+    const auto piece = grid.child("Piece");
+    n_ = unsigned_attribute(piece, "NumberOfPoints");
+    // Each point takes at least a byte per coordinate in any encoding; this bound also keeps
+    // every size computed from n_ far from overflow.
+    if (n_ > bytes_.size() / 3)
+      fail_at(piece, fmt::format("NumberOfPoints = {} is more than a file of {} bytes can hold", n_, bytes_.size()));
+
+    ParticleTable table;
+    table.path = path_;
+    table.count = n_;
+    const auto points = piece.child("Points").child("DataArray");
+    if (!points) fail_at(piece, "no <Points> with a <DataArray>: the file has no particle positions");
+    table.columns.push_back(read_array(points, "position", "the Points array", 3));
+    for (const auto& a : piece.child("PointData").children("DataArray")) {
+      const std::string name = a.attribute("Name").value();
+      if (name.empty()) fail_at(a, "a PointData DataArray has no Name");
+      if (table.find(name))
+        fail_at(a, fmt::format("PointData array '{}' appears twice (or clashes with the Points, read as 'position')",
+                               name));
+      table.columns.push_back(read_array(a, name, fmt::format("PointData array '{}'", name)));
+    }
+    return table;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& message) const {
+    throw Error(fmt::format("{}: {}", path_, message), true);
+  }
+  // The 1-based line of a byte offset; 0 if it lies outside the file.
+  long line_of(std::ptrdiff_t offset) const {
+    if (offset < 0 || static_cast<std::size_t>(offset) > bytes_.size()) return 0;
+    return 1 + std::count(bytes_.begin(), bytes_.begin() + offset, '\n');
+  }
+  [[noreturn]] void fail_at(std::ptrdiff_t offset, const std::string& message) const {
+    if (line_of(offset) == 0) fail(message);
+    throw Error(fmt::format("{}:{}: {}", path_, line_of(offset), message), true);
+  }
+  [[noreturn]] void fail_at(pugi::xml_node node, const std::string& message) const {
+    fail_at(node.offset_debug(), message);
+  }
+
+  // pugixml cannot take raw binary, so only the XML before <AppendedData> is parsed (with
+  // the AppendedData tag made empty and VTKFile closed); the block itself is located here.
+  void parse_head() {
+    const auto tag = bytes_.find("<AppendedData");
+    std::string head;  // stays empty when the whole file is XML
+    if (tag != std::string::npos) {
+      const auto gt = bytes_.find('>', tag);
+      if (gt == std::string::npos) fail("truncated file: it ends inside the <AppendedData> tag");
+      const bool empty = bytes_[gt - 1] == '/';
+      head = bytes_.substr(0, empty ? gt + 1 : gt) + (empty ? "" : "/>") + "</VTKFile>";
+      if (!empty) locate_block(gt + 1);
+    }
+    const std::string& xml = tag == std::string::npos ? bytes_ : head;
+    const auto result = doc_.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
+    if (!result && result.status != pugi::status_no_document_element && tag == std::string::npos) {
+      // Every VTK XML file ends with </VTKFile>: without it the error is a symptom of a cut.
+      if (!trim(bytes_).ends_with("</VTKFile>"))
+        fail(fmt::format("truncated file: it does not end with </VTKFile> (XML error at line {}: {})",
+                         line_of(result.offset), result.description()));
+    }
+    if (!result) fail_at(result.offset, fmt::format("not valid XML: {}", result.description()));
+    const auto appended = doc_.child("VTKFile").child("AppendedData");
+    const std::string encoding = appended.attribute("encoding").as_string("raw");
+    if (appended && encoding != "raw" && encoding != "base64")
+      fail_at(appended, fmt::format("AppendedData encoding \"{}\" is not supported (raw or base64)", encoding));
+    base64_block_ = encoding == "base64";
+  }
+
+  void locate_block(std::size_t p) {
+    while (p < bytes_.size() && is_space(bytes_[p])) ++p;
+    if (p == bytes_.size()) fail("truncated file: it ends before the appended data");
+    if (bytes_[p] != '_') fail_at(p, "the appended data does not start with '_'");
+    block_begin_ = p + 1;
+    // The last closing tag: the binary data before it may contain anything.
+    const auto close = bytes_.rfind("</AppendedData>");
+    if (close == std::string::npos || close < block_begin_) fail("truncated file: no closing </AppendedData>");
+    block_end_ = close;
+    if (trim(std::string_view(bytes_).substr(close + std::strlen("</AppendedData>"))) != "</VTKFile>")
+      fail("truncated file: </AppendedData> is not followed by </VTKFile>");
+  }
+
+  std::uint64_t unsigned_attribute(pugi::xml_node node, const char* name) const {
+    const std::string_view text = node.attribute(name).value();
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+      fail_at(node, fmt::format("<{}> needs {} = a non-negative integer, got \"{}\"", node.name(), name, text));
+    return v;
+  }
+
+  // One DataArray as a column; `components` > 0: the number it must have.
+  Column read_array(pugi::xml_node a, const std::string& column, const std::string& what, int components = 0) {
+    Column c{column, 1, {}};
+    if (a.attribute("NumberOfComponents")) {
+      const auto k = unsigned_attribute(a, "NumberOfComponents");
+      if (k < 1 || k > 1024) fail_at(a, fmt::format("{} has NumberOfComponents = {}", what, k));
+      c.components = static_cast<int>(k);
+    }
+    if (components > 0 && c.components != components)
+      fail_at(a, fmt::format("{} has {} components, expected {}", what, c.components, components));
+    const std::string type_text = a.attribute("type").value();
+    const auto type = std::find_if(std::begin(kTypes), std::end(kTypes),
+                                   [&](const TypeInfo& t) { return type_text == t.name; });
+    if (type == std::end(kTypes)) fail_at(a, fmt::format("{} has unknown type \"{}\"", what, type_text));
+    const std::size_t count = n_ * c.components;  // < 2^62: n_ is bounded by the file size
+    const std::size_t bytes = count * type->size;
+    const std::string format = a.attribute("format").value();
+    if (format == "ascii") {
+      c.values = ascii(a, a.child_value(), count, what);
+      return c;
+    }
+    std::string_view data;
+    std::string decoded;
+    // base64: the size header first, so a wrong size is reported as such before the rest.
+    auto from_base64 = [&](std::string_view text) {
+      payload(a, base64(a, text, header_size_, what), bytes, what, true);
+      decoded = base64(a, text, header_size_ + bytes, what);
+      return payload(a, decoded, bytes, what);
+    };
+    if (format == "binary") {  // inline base64
+      data = from_base64(a.child_value());
+    } else if (format == "appended") {
+      if (block_begin_ == 0)
+        fail_at(a, fmt::format("{} is format=\"appended\" but the file has no appended data", what));
+      const auto offset = unsigned_attribute(a, "offset");
+      const std::size_t block = block_end_ - block_begin_;
+      if (offset >= block)
+        fail_at(a, fmt::format("{}: offset {} is beyond the appended data ({} bytes)", what, offset, block));
+      const auto rest = std::string_view(bytes_).substr(block_begin_ + offset, block - offset);
+      data = base64_block_ ? from_base64(rest) : payload(a, rest, bytes, what);
+    } else {
+      fail_at(a, fmt::format("{} has format \"{}\" (expected appended, binary or ascii)", what, format));
+    }
+    c.values.resize(count);  // the bytes are there: payload() checked them
+    type->convert(data.data(), count, c.values.data());
+    return c;
+  }
+
+  // The data of one binary block, after its byte-count header, checked against the size
+  // the array must have. `header_only`: the block may hold just the header so far.
+  std::string_view payload(pugi::xml_node a, std::string_view block, std::size_t expected, const std::string& what,
+                           bool header_only = false) const {
+    if (block.size() < header_size_) fail_at(a, fmt::format("truncated file: {} ends inside its size header", what));
+    std::uint64_t size = 0;
+    std::memcpy(&size, block.data(), header_size_);  // little-endian: the low bytes first
+    if (size != expected)
+      fail_at(a, fmt::format("{} holds {} bytes, but NumberOfPoints = {} needs {}", what, size, n_, expected));
+    if (!header_only && block.size() - header_size_ < size)
+      fail_at(a, fmt::format("truncated file: {} needs {} bytes, only {} are there", what, size,
+                             block.size() - header_size_));
+    return block.substr(header_size_, size);
+  }
+
+  // Decodes base64 four characters at a time, allowing '=' padding at the end of any
+  // quantum: VTK encodes the size header and the data as two base64 runs, other writers as
+  // one; both decode to the same bytes this way. Stops once `want` bytes are out.
+  std::string base64(pugi::xml_node a, std::string_view text, std::size_t want, const std::string& what) const {
+    if (want > text.size() / 4 * 3 + 3)  // check before allocating
+      fail_at(a, fmt::format("truncated file: {} needs {} bytes but holds at most {}", what, want,
+                             text.size() / 4 * 3));
+    std::string out;
+    out.reserve(want);
+    int q[4], k = 0;
+    for (std::size_t i = 0; i < text.size() && out.size() < want; ++i) {
+      const char ch = text[i];
+      if (is_space(ch)) continue;
+      const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+      const char* pos = ch ? std::strchr(alphabet, ch) : nullptr;
+      if (!pos && ch != '=') fail_at(a, fmt::format("{}: '{}' is not a base64 character", what, ch));
+      q[k++] = pos ? static_cast<int>(pos - alphabet) : -1;
+      if (k < 4) continue;
+      k = 0;
+      if (q[0] < 0 || q[1] < 0 || (q[2] < 0 && q[3] >= 0)) fail_at(a, fmt::format("{}: misplaced base64 '='", what));
+      out += static_cast<char>(q[0] << 2 | q[1] >> 4);
+      if (q[2] >= 0) out += static_cast<char>((q[1] & 15) << 4 | q[2] >> 2);
+      if (q[3] >= 0) out += static_cast<char>((q[2] & 3) << 6 | q[3]);
+    }
+    if (out.size() > want) out.resize(want);
+    return out;
+  }
+
+  std::vector<double> ascii(pugi::xml_node a, const char* text, std::size_t count, const std::string& what) const {
+    const std::string_view s(text);
+    if (count > (s.size() + 1) / 2)  // each value needs a character and a separator
+      fail_at(a, fmt::format("{} holds too few values for NumberOfPoints = {}", what, n_));
+    std::vector<double> values;
+    values.reserve(count);
+    std::size_t p = 0;
+    while (true) {
+      while (p < s.size() && is_space(s[p])) ++p;
+      if (p == s.size()) break;
+      std::size_t e = p;
+      while (e < s.size() && !is_space(s[e])) ++e;
+      const auto token = s.substr(p, e - p);
+      if (values.size() == count)
+        fail_at(a, fmt::format("{} holds more than the {} values NumberOfPoints = {} needs", what, count, n_));
+      double v = 0;
+      const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);  // from_chars refuses '+'
+      const auto [end, ec] = std::from_chars(begin, token.data() + token.size(), v);
+      if (ec != std::errc() || end != token.data() + token.size())
+        fail_at(a, fmt::format("{}: '{}' is not a number", what, token.substr(0, 40)));
+      values.push_back(v);
+      p = e;
+    }
+    if (values.size() != count)
+      fail_at(a, fmt::format("{} holds {} values, but NumberOfPoints = {} needs {}", what, values.size(), n_, count));
+    return values;
+  }
+
+  std::string path_;
+  std::string bytes_;  // the whole file
+  pugi::xml_document doc_;
+  std::size_t block_begin_ = 0, block_end_ = 0;  // the appended data, after '_'; 0: none
+  bool base64_block_ = false;
+  std::size_t header_size_ = 4;
+  std::uint64_t n_ = 0;
+};
+
+}  // namespace
+
+ParticleTable read_vtu(const std::string& path) { return VtuReader(path).read(); }
+
+}  // namespace pbf

@@ -1,0 +1,163 @@
+// The scene functions of the `pbf` table: the domain and settings, particles from lattices
+// and files, and restarts.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "engine/io/load_particles.hpp"
+#include "engine/io/restart.hpp"
+#include "engine/io/scene_file.hpp"
+#include "engine/lattice.hpp"
+#include "engine/simulation.hpp"
+#include "scripting/script_state.hpp"
+
+namespace pbf::lua {
+
+namespace {
+
+void push_vec3(lua_State* L, const double v[3]) {
+  lua_createtable(L, 3, 0);
+  for (int k = 0; k < 3; ++k) {
+    lua_pushnumber(L, v[k]);
+    lua_rawseti(L, -2, k + 1);
+  }
+}
+
+int l_domain(lua_State* L) {
+  State& S = state(L);
+  if (!lua_isnoneornil(L, 1)) {
+    S.not_running("pbf.domain");
+    const Params p = table_arg(L, 1, "pbf.domain",
+                               {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
+                                {"hi", ParamType::Vector3, std::nullopt, "m", ""}});
+    Domain d;
+    for (int a = 0; a < 3; ++a) {
+      d.lo[a] = p.vec3("lo")[a];
+      d.hi[a] = p.vec3("hi")[a];
+    }
+    S.sim.set_domain(d);
+  }
+  lua_createtable(L, 0, 2);
+  push_vec3(L, S.sim.domain().lo);
+  lua_setfield(L, -2, "lo");
+  push_vec3(L, S.sim.domain().hi);
+  lua_setfield(L, -2, "hi");
+  return 1;
+}
+
+// Getter/setter pairs: pbf.kernel_radius(h) sets, pbf.kernel_radius() reads.
+template <double (Simulation::*Get)() const, void (Simulation::*Set)(double)>
+int l_setting(lua_State* L) {
+  State& S = state(L);
+  if (!lua_isnoneornil(L, 1)) {
+    S.not_running("pbf.kernel_radius, pbf.timestep and pbf.rest_density");
+    (S.sim.*Set)(lua::number(L, 1, "the value"));
+  }
+  lua_pushnumber(L, (S.sim.*Get)());
+  return 1;
+}
+
+int l_lattice(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.lattice");
+  const Params p = table_arg(L, 1, "pbf.lattice",
+                             {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
+                              {"hi", ParamType::Vector3, std::nullopt, "m", ""},
+                              {"spacing", ParamType::Real, std::nullopt, "m", ""},
+                              {"velocity", ParamType::Vector3, Vec3{0, 0, 0}, "m/s", ""},
+                              {"center", ParamType::Vector3, std::nullopt, "m", "", true},
+                              {"radius", ParamType::Real, 0.0, "m", ""}});
+  const Vec3 lo = p.vec3("lo"), hi = p.vec3("hi"), v = p.vec3("velocity");
+  const double radius = p.real("radius");
+  if (radius < 0 || (radius > 0) != p.has("center"))
+    throw Error("pbf.lattice: a sphere needs both 'center' and a positive 'radius'");
+  const Vec3 center = p.has("center") ? p.vec3("center") : Vec3{0, 0, 0};
+  lua_pushinteger(L, static_cast<lua_Integer>(
+                         add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data(), center.data(), radius)));
+  return 1;
+}
+
+int l_read_scene(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.read_scene");
+  if (S.sim.particles().size() > 0)
+    throw Error("pbf.read_scene: the scene file sets the domain, so read it before creating any particle");
+  const SceneFile scene = read_scene_file(lua::string(L, 1, "pbf.read_scene: the path"));
+  const double mass = load_scene(S.sim, scene);
+  lua_createtable(L, 0, 7);
+  const std::pair<const char*, double> fields[] = {{"dt", scene.dt},         {"h", scene.h},
+                                                   {"L", scene.L},           {"interval", scene.interval},
+                                                   {"t_final", scene.t_final}, {"mass", mass}};
+  for (const auto& [name, value] : fields) {
+    lua_pushnumber(L, value);
+    lua_setfield(L, -2, name);
+  }
+  lua_pushinteger(L, static_cast<lua_Integer>(scene.count));
+  lua_setfield(L, -2, "count");
+  return 1;
+}
+
+int l_read_particles(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.read_particles");
+  const std::string path = lua::string(L, 1, "pbf.read_particles: the path");
+  const LoadedParticles loaded = load_particle_file(S.sim, path);
+  if (!loaded.ignored.empty()) {
+    std::string names;
+    for (const auto& n : loaded.ignored) names += (names.empty() ? "" : ", ") + n;
+    spdlog::info("{}: columns not used: {}", path, names);
+  }
+  lua_createtable(L, 0, 2);
+  lua_pushinteger(L, static_cast<lua_Integer>(loaded.count));
+  lua_setfield(L, -2, "count");
+  lua_pushnumber(L, loaded.mass);
+  lua_setfield(L, -2, "mass");
+  return 1;
+}
+
+void push_restart_summary(lua_State* L, const RestartSummary& r) {
+  lua_createtable(L, 0, 4);
+  lua_pushinteger(L, static_cast<lua_Integer>(r.step));
+  lua_setfield(L, -2, "step");
+  lua_pushnumber(L, r.time);
+  lua_setfield(L, -2, "time");
+  lua_pushinteger(L, static_cast<lua_Integer>(r.particles));
+  lua_setfield(L, -2, "particles");
+  lua_pushinteger(L, static_cast<lua_Integer>(r.bytes));
+  lua_setfield(L, -2, "bytes");
+  lua_pushnumber(L, r.seconds);
+  lua_setfield(L, -2, "seconds");
+}
+
+int l_write_restart(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.write_restart");
+  const std::string path = lua::string(L, 1, "pbf.write_restart: the path");
+  if (S.sim.particles().size() == 0) throw Error("pbf.write_restart: there are no particles to save");
+  push_restart_summary(L, write_restart(S.sim, path));
+  return 1;
+}
+
+int l_read_restart(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.read_restart");
+  if (S.sim.particles().size() > 0)
+    throw Error("pbf.read_restart replaces the scene: call it before creating any particle");
+  push_restart_summary(L, read_restart(S.sim, lua::string(L, 1, "pbf.read_restart: the path")));
+  return 1;
+}
+
+}  // namespace
+
+std::vector<luaL_Reg> scene_functions() {
+  return {{"domain", guarded<l_domain>},
+          {"kernel_radius", guarded<l_setting<&Simulation::kernel_radius, &Simulation::set_kernel_radius>>},
+          {"timestep", guarded<l_setting<&Simulation::timestep, &Simulation::set_timestep>>},
+          {"rest_density", guarded<l_setting<&Simulation::rest_density, &Simulation::set_rest_density>>},
+          {"lattice", guarded<l_lattice>},
+          {"read_scene", guarded<l_read_scene>},
+          {"read_particles", guarded<l_read_particles>},
+          {"write_restart", guarded<l_write_restart>},
+          {"read_restart", guarded<l_read_restart>}};
+}
+
+}  // namespace pbf::lua

@@ -1,0 +1,25 @@
+-- outputs.lua: the optional outputs every scenario offers, switched on with -v variables:
+--   images=T     PNG pictures every T simulated seconds, OUT/image_00000.png, ...
+--   movie=PATH   an mp4 of pictures every movie_interval seconds (default 0.02)
+--   vtk=T        ParaView frames every T seconds, OUT/vtk/frame_*.vtu and OUT/vtk/frame.pvd
+-- `view` holds the dump/image parameters (camera, colour field and scale) that pictures and
+-- the movie share. A scenario loads it with
+--   package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
+--   require("outputs").add(out, {color = "speed", min = 0, max = 2, direction = {1, 2, -1}})
+local outputs = {}
+
+function outputs.add(out, view)
+  local function picture(extra)
+    local p = {}
+    for k, v in pairs(view) do p[k] = v end
+    for k, v in pairs(extra) do p[k] = v end
+    return p
+  end
+  if var.images then pbf.fix("images", "dump/image", picture{path = out .. "/image_*.png", interval = var.images}) end
+  if var.movie then
+    pbf.fix("movie", "dump/movie", picture{path = var.movie, interval = var.movie_interval or 0.02})
+  end
+  if var.vtk then pbf.fix("vtk", "dump/vtk", {path = out .. "/vtk/frame_*.vtu", interval = var.vtk}) end
+end
+
+return outputs

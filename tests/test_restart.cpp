@@ -1,0 +1,234 @@
+// Restarts: a run continued from a restart is bit for bit the run that never stopped, at 1
+// and 2 threads; every kind of damaged file is a clear error that leaves the simulation as
+// it was; fixes on one side only are named; a blow-up names the restart to go back to; and
+// Ctrl-C finishes the step, writes a restart and exits with 130.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fmt/format.h>
+#include <zlib.h>
+
+#include "engine/error.hpp"
+#include "engine/io/restart.hpp"
+#include "engine/lattice.hpp"
+#include "engine/simulation.hpp"
+#include "engine/style_registry.hpp"
+#include "test_util.hpp"
+
+using namespace pbf;
+using pbf::test::read_file;
+using pbf::test::run_engine;
+using pbf::test::scenario;
+using pbf::test::temp_dir;
+using pbf::test::write_file;
+
+namespace {
+
+// The dam break (vorticity and XSPH on) with a restart every 30 steps, and a final restart
+// that holds the whole end state (particles in memory order, clock, fix states).
+const std::string kWrapper = "dofile(var.scenario)\npbf.write_restart(var.final)\n";
+
+std::string dambreak_args(const std::filesystem::path& dir, const std::string& final, int threads) {
+  return fmt::format("run {} -v scenario={} -v particles=1000 -v t_end=0.24 -v restart_every=30 -v out={} "
+                     "-v final={} --threads {}",
+                     (dir / "wrap.lua").string(), scenario("dambreak.lua"), (dir / "out").string(),
+                     (dir / final).string(), threads);
+}
+
+TEST(Restart, ContinuedRunIsBitIdenticalAtOneAndTwoThreads) {
+  const auto dir = temp_dir("restart");
+  write_file(dir / "wrap.lua", kWrapper);
+  auto straight = run_engine(dambreak_args(dir, "straight.final", 1));
+  ASSERT_EQ(straight.code, 0) << straight.output;
+  // Step 30: not a multiple of the reordering interval (20), so memory order is tested too.
+  const auto half = dir / "half.restart";
+  std::filesystem::copy_file(dir / "out" / "restart.30.restart", half);
+  for (int threads : {1, 2}) {
+    const std::string final = fmt::format("continued{}.final", threads);
+    auto continued = run_engine(dambreak_args(dir, final, threads) + " -v restart=" + half.string());
+    ASSERT_EQ(continued.code, 0) << continued.output;
+    EXPECT_NE(continued.output.find("continuing from"), std::string::npos);
+    EXPECT_EQ(continued.output.find("warning"), std::string::npos) << continued.output;
+    const std::string a = read_file(dir / "straight.final"), b = read_file(dir / final);
+    ASSERT_GT(a.size(), 64000u);  // 1000 particles: ids, positions, velocities, masses
+    EXPECT_TRUE(a == b) << "a run continued at " << threads << " thread(s) differs from the straight run";
+  }
+  // The periodic restarts kept the newest two: steps 30 and 60.
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "restart.60.restart"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "restart.30.restart"));
+}
+
+// A small valid restart to damage.
+std::string valid_restart(const std::filesystem::path& dir) {
+  Simulation sim;
+  Domain d;
+  d.hi[0] = d.hi[1] = d.hi[2] = 0.2;
+  sim.set_domain(d);
+  sim.set_kernel_radius(0.02);
+  sim.set_timestep(0.001);
+  const double lo[3] = {0.05, 0.05, 0.05}, hi[3] = {0.1, 0.1, 0.1}, v[3] = {0, 0, 0};
+  add_lattice(sim, lo, hi, 0.01, v);
+  const std::string path = (dir / "valid.restart").string();
+  write_restart(sim, path);
+  return path;
+}
+
+void put_u32(std::string& bytes, std::size_t at, std::uint32_t v) { std::memcpy(&bytes[at], &v, 4); }
+void put_u64(std::string& bytes, std::size_t at, std::uint64_t v) { std::memcpy(&bytes[at], &v, 8); }
+// After editing the payload: a correct checksum, so the damage reaches the payload reader.
+void fix_checksum(std::string& bytes) {
+  put_u32(bytes, 20, static_cast<std::uint32_t>(
+                         crc32_z(0, reinterpret_cast<const unsigned char*>(bytes.data()) + 32, bytes.size() - 32)));
+}
+
+// Reads `bytes` as a restart; expects an error containing `expected` and the path, and the
+// simulation untouched.
+void expect_rejected(const std::filesystem::path& dir, const std::string& bytes, const std::string& expected) {
+  const auto path = dir / "damaged.restart";
+  write_file(path, bytes);
+  Simulation sim;
+  try {
+    read_restart(sim, path.string());
+    ADD_FAILURE() << "no error for: " << expected;
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+  }
+  EXPECT_EQ(sim.particles().size(), 0u);
+  EXPECT_EQ(sim.kernel_radius(), 0.0);
+}
+
+TEST(Restart, DamagedFilesAreClearErrors) {
+  const auto dir = temp_dir("restart-bad");
+  const std::string good = read_file(valid_restart(dir));
+  {
+    Simulation sim;
+    EXPECT_EQ(read_restart(sim, (dir / "valid.restart").string()).particles, 125u);  // 5^3
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "valid.restart.tmp"));
+
+  for (std::size_t cut : {std::size_t{0}, std::size_t{7}, std::size_t{31}, std::size_t{32}, std::size_t{100},
+                          good.size() / 2, good.size() - 1})
+    expect_rejected(dir, good.substr(0, cut), cut < 32 ? "too short" : "truncated");
+  expect_rejected(dir, good + "x", "announces");
+
+  std::string bytes = good;
+  bytes[0] = 'X';
+  expect_rejected(dir, bytes, "not a pbfengine restart file");
+
+  bytes = good;
+  put_u32(bytes, 8, 99);
+  expect_rejected(dir, bytes, "restart format version 99; this pbfengine reads version 1");
+
+  bytes = good;
+  put_u32(bytes, 12, 0x04030201);
+  expect_rejected(dir, bytes, "other byte order");
+
+  bytes = good;
+  put_u32(bytes, 16, sizeof(real) == 8 ? 4 : 8);
+  expect_rejected(dir, bytes, sizeof(real) == 8 ? "written by a single (float)-precision build"
+                                                : "written by a double-precision build");
+
+  bytes = good;
+  put_u64(bytes, 24, std::uint64_t{1} << 62);  // an absurd size: compared with the file, never allocated
+  expect_rejected(dir, bytes, "announces");
+
+  bytes = good;
+  bytes[bytes.size() / 2] ^= 0x10;
+  expect_rejected(dir, bytes, "checksum mismatch");
+
+  // Damage behind a valid checksum: the reader's own bounds checks.
+  const std::size_t count_at = 32 + 6 * 8 + 3 * 8 + 3 * 8;  // after domain, h/dt/rho0 and the clock
+  bytes = good;
+  put_u64(bytes, count_at, std::uint64_t{1} << 60);  // a particle count no file could hold
+  fix_checksum(bytes);
+  expect_rejected(dir, bytes, "the data end early");
+
+  bytes = good;
+  put_u64(bytes, count_at + 8, 7);  // particle 0 given id 7 twice: not a permutation
+  put_u64(bytes, count_at + 16, 7);
+  fix_checksum(bytes);
+  expect_rejected(dir, bytes, "permutation");
+
+  expect_rejected(dir, "", "too short");
+  Simulation sim;
+  EXPECT_THROW(read_restart(sim, (dir / "missing.restart").string()), Error);
+}
+
+TEST(Restart, ReadingAPrecisionNameAndUnwritablePath) {
+  const auto dir = temp_dir("restart-path");
+  Simulation sim;
+  sim.set_kernel_radius(0.02);
+  sim.set_timestep(0.001);
+  try {
+    write_restart(sim, (dir / "no" / "such" / "dir" / "x.restart").string());
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write restart"), std::string::npos) << e.what();
+  }
+}
+
+// Lines 1-6: a scene with a restart fix every 2 steps and a frame dump.
+const std::string kScene =
+    "if var.restart then pbf.read_restart(var.restart) else\n"
+    "pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}; pbf.kernel_radius(0.02); pbf.timestep(0.001)\n"
+    "pbf.lattice{lo = {0.05, 0.05, 0.05}, hi = {0.1, 0.1, 0.1}, spacing = 0.01} end\n"
+    "pbf.fix('g', 'gravity', {acceleration = {0, 0, -9.81}})\n"
+    "pbf.fix('pbf', 'pbf', {}); pbf.fix('walls', 'box', {})\n"
+    "pbf.fix('save', 'restart', {path = var.dir .. '/r.*.restart', every = 2})\n";
+
+TEST(Restart, FixesOnOneSideOnlyAreNamed) {
+  const auto dir = temp_dir("restart-fixes");
+  write_file(dir / "a.lua", kScene + "pbf.fix('frames', 'dump/text', {path = var.dir .. '/f/frame_*.txt', every = 1})\npbf.run(4)\n");
+  auto r = run_engine("run " + (dir / "a.lua").string() + " -v dir=" + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  write_file(dir / "b.lua", kScene + "pbf.fix('xs', 'xsph', {})\npbf.run(2)\n");
+  r = run_engine("run " + (dir / "b.lua").string() + " -v dir=" + dir.string() + " -v restart=" +
+                 (dir / "r.4.restart").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: fix 'frames' (dump/text) is in restart"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("warning: fix 'xs' (xsph) is not in restart"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("fix 'pbf'"), std::string::npos) << r.output;
+  // The continued restart fix kept counting: step 6 written, step 2 (the oldest) gone.
+  EXPECT_TRUE(std::filesystem::exists(dir / "r.6.restart"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.2.restart"));
+}
+
+TEST(Restart, ABlowUpNamesTheLastRestart) {
+  const auto dir = temp_dir("restart-blowup");
+  write_file(dir / "a.lua", kScene + "pbf.run(4)\npbf.unfix('g')\n"
+                                     "pbf.fix('g', 'gravity', {acceleration = {0, 0, -1e308}})\n"
+                                     "pbf.timestep(100)\npbf.run(4)\n");
+  auto r = run_engine("run " + (dir / "a.lua").string() + " -v dir=" + dir.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("step 5: the simulation blew up"), std::string::npos) << r.output;
+  const std::string last = (dir / "r.4.restart").string();
+  EXPECT_NE(r.output.find("the last restart is '" + last + "' (step 4)"), std::string::npos) << r.output;
+  Simulation sim;
+  EXPECT_EQ(read_restart(sim, last).step, 4);  // and it is valid
+}
+
+TEST(Restart, CtrlCWritesARestartAndExitsWith130) {
+  const auto dir = temp_dir("restart-sigint");
+  // A long run that marks step 5 in a file, so the signal comes during the run.
+  write_file(dir / "a.lua", kScene + "pbf.every('mark', 1, function(step)\n"
+                                     "  if step == 5 then io.open(var.dir .. '/running', 'w'):close() end end)\n"
+                                     "pbf.run(100000000)\n");
+  const std::string command = fmt::format(
+      "cd {0} && ( {1} run a.lua -v dir={0} --threads 1 > log 2>&1 & pid=$!; "
+      "for i in $(seq 600); do [ -e running ] && break; sleep 0.05; done; kill -INT $pid; wait $pid; echo $? > code )",
+      dir.string(), PBF_BINARY);
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(read_file(dir / "code"), "130\n");
+  const std::string log = read_file(dir / "log");
+  const auto at = log.find("wrote restart '");
+  ASSERT_NE(at, std::string::npos) << log;
+  const std::string path = log.substr(at + 15, log.find('\'', at + 15) - at - 15);
+  Simulation sim;
+  const auto summary = read_restart(sim, path);
+  EXPECT_GE(summary.step, 5);
+  EXPECT_NE(log.find(fmt::format("interrupted (Ctrl-C) after step {}", summary.step)), std::string::npos) << log;
+}
+
+}  // namespace
