@@ -14,7 +14,7 @@ const char* type_name(ParamType type) {
     case ParamType::Bool: return "boolean";
     case ParamType::String: return "string";
     case ParamType::Vector3: return "vector {x, y, z}";
-    case ParamType::StringList: return "list of names {\"a\", \"b\", ...}";
+    case ParamType::StringList: return "list of names";
   }
   return "?";
 }

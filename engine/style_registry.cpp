@@ -80,7 +80,7 @@ std::string StyleRegistry::help(const std::string& style) const {
   if (info->params.empty()) return out + "  (no parameters)\n";
   out += "Parameters (name, type, default, unit: description):\n";
   for (const auto& p : info->params)
-    out += fmt::format("  {:<14} {:<8} {:<20} {:<8} {}\n", p.name, type_name(p.type),
+    out += fmt::format("  {:<14} {:<16} {:<20} {:<8} {}\n", p.name, type_name(p.type),
                        p.default_value ? format_value(*p.default_value) : p.optional ? "(optional)" : "(required)",
                        p.unit.empty() ? "-" : p.unit, p.doc);
   return out;

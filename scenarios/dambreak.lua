@@ -41,6 +41,7 @@ local dt = var.dt or 0.4 * h / math.sqrt(2 * g * 2 * a)   -- 0.4 h per step at t
 
 if var.restart then
   local r = pbf.read_restart(var.restart)   -- domain, h, dt, particles, step and time
+  if var.dt then pbf.timestep(var.dt) end   -- a new step size: no longer the saved run's continuation
   dt = pbf.timestep()
   print(string.format("continuing from %s: step %d, t = %.4g s", var.restart, r.step, r.time))
 else

@@ -79,7 +79,7 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
     case LUA_TSTRING: return string(L, index, name.c_str());
     case LUA_TTABLE: {
       lua_rawgeti(L, index, 1);
-      const bool names = lua_type(L, -1) == LUA_TSTRING;
+      const bool names = lua_type(L, -1) == LUA_TSTRING || lua_type(L, -1) == LUA_TNIL;  // {} is no names
       lua_pop(L, 1);
       if (names) return string_list(L, index, fmt::format("parameter '{}'", name).c_str());
       return vec3(L, index, fmt::format("parameter '{}'", name).c_str());

@@ -132,6 +132,7 @@ int l_run(lua_State* L) {
     bool& flag;
     ~Running() { flag = false; }
   } guard{S.running};
+  if (S.interrupted) throw *S.interrupted;  // a pcall caught Ctrl-C: still no more running
   S.running = true;
   try {
     S.sim.run(steps);
@@ -286,6 +287,7 @@ void Script::run_file(const std::string& path) {
     if (state_->interrupted) throw *state_->interrupted;
     throw Error(full_path(message), true);
   }
+  if (state_->interrupted) throw *state_->interrupted;  // caught by a pcall in the script
 }
 
 std::vector<std::string> Script::unread_variables() const {

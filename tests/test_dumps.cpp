@@ -194,3 +194,46 @@ TEST(DumpMovie, AnMp4OfEveryFrameAndAClearErrorWithoutFfmpeg) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ReadParticles, AVtkFrameOrACsvStartsANewRun) {
+  const auto dir = temp_dir("read-particles");
+  write_file(dir / "a.lua", kScene + "pbf.fix('vtk', 'dump/vtk', {path = var.dir .. '/f_*.vtu', every = 10,\n"
+                                     "  fields = {'velocity', 'mass'}})\npbf.run(10)\n");
+  auto r = run_engine("run " + (dir / "a.lua").string() + " -v dir=" + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  // Frame 1 as the scene of a new run: same particles, velocities and masses.
+  write_file(dir / "b.lua",
+             "pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}; pbf.kernel_radius(0.02); pbf.timestep(0.001)\n"
+             "local r = pbf.read_particles(var.file)\n"
+             "assert(r.count == 125 and r.mass == 0, 'count ' .. r.count .. ' mass ' .. r.mass)\n"
+             "pbf.fix('t', 'dump/text', {path = var.dir .. '/t_*.txt', every = 1, fields = {'position', 'velocity', "
+             "'mass'}})\npbf.run(0)\n");
+  r = run_engine("run " + (dir / "b.lua").string() + " -v dir=" + dir.string() + " -v file=" +
+                 (dir / "f_00001.vtu").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const ParticleTable frame = read_vtu((dir / "f_00001.vtu").string());
+  const auto rows = read_text_frame(dir / "t_00000.txt");
+  ASSERT_EQ(rows.size(), 125u);
+  for (std::size_t i = 0; i < 125; ++i)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(real(rows[i][c]), real(frame.find("position")->values[3 * i + c]));
+      EXPECT_EQ(real(rows[i][3 + c]), real(frame.find("velocity")->values[3 * i + c]));
+      EXPECT_EQ(real(rows[i][6]), real(frame.find("mass")->values[i]));
+    }
+
+  // A CSV without masses gets the mass rule; a particle outside the domain names the row.
+  write_file(dir / "p.csv", "x,y,z,vx,vy,vz\n0.1,0.1,0.1,0,0,1\n0.11,0.1,0.1,0,0,1\n");
+  r = run_engine("run " + (dir / "b.lua").string() + " -v dir=" + dir.string() + " -v file=" + (dir / "p.csv").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find("count 2 mass 0.00"), std::string::npos) << r.output;  // the mass rule's value
+  write_file(dir / "q.csv", "x,y,z\n0.1,0.1,0.1\n0.1,0.1,0.3\n");
+  r = run_engine("run " + (dir / "b.lua").string() + " -v dir=" + dir.string() + " -v file=" + (dir / "q.csv").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find((dir / "q.csv").string() + ": particle 1 at (0.1, 0.1, 0.3) is outside the domain"),
+            std::string::npos)
+      << r.output;
+}
+
+}  // namespace

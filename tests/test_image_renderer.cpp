@@ -188,7 +188,8 @@ TEST(ImageRenderer, BadSpecIsAnError) {
 }
 
 TEST(ImageRenderer, ColorbarTicksAreThreeToFiveValuesInRange) {
-  for (auto [lo, hi] : {std::pair{0.0, 2.37}, {0.0, 1.0}, {-1.0, 1.0}, {0.013, 0.0175}, {1e20, 1e20 + 1e6}, {5.0, 5.9}}) {
+  for (auto [lo, hi] :
+       {std::pair{0.0, 2.37}, {0.0, 1.0}, {-1.0, 1.0}, {0.013, 0.0175}, {1e20, 1e20 + 1e6}, {5.0, 5.9}}) {
     const auto ticks = pbf::colorbar_ticks(lo, hi);
     EXPECT_GE(ticks.size(), 3u) << lo << " " << hi;
     EXPECT_LE(ticks.size(), 5u) << lo << " " << hi;

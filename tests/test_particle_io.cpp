@@ -420,7 +420,14 @@ TEST(ParticleInput, MissingOrBadColumnsAreErrorsNamingTheFile) {
   const auto x = col("x", {0, 1}), y = col("y", {0, 1}), z = col("z", {0, 1});
   EXPECT_FILE_ERROR(interpret_particles(table({col("a", {1, 2}), col("velocity", {0, 0, 0, 0, 0, 0}, 3)})),
                     "parts.csv", "no particle positions: expected a 3-component column 'position' or columns x, y, "
-                                 "z; found: a, velocity (3 components)");
+                                 "z (or ParaView's Points:0, Points:1, Points:2); found: a, velocity (3 components)");
+  // ParaView's CSV export: vector components as NAME:0, NAME:1, NAME:2.
+  const ParticleInput pv = interpret_particles(table({col("Points:0", {0, 1}), col("Points:1", {2, 3}),
+                                                      col("Points:2", {4, 5}), col("velocity:0", {6, 7}),
+                                                      col("velocity:1", {8, 9}), col("velocity:2", {10, 11})}));
+  EXPECT_EQ(pv.y, (std::vector<double>{2, 3}));
+  EXPECT_EQ(pv.vz, (std::vector<double>{10, 11}));
+  EXPECT_TRUE(pv.ignored.empty());
   EXPECT_FILE_ERROR(interpret_particles(table({x, y})), "parts.csv", "x, y, z go together, but z is missing");
   EXPECT_FILE_ERROR(interpret_particles(table({x, y, z, col("vy", {0, 0})})), "parts.csv", "but vx is missing");
   EXPECT_FILE_ERROR(interpret_particles(table({col("position", {0, 1, 2, 3}, 2)})), "parts.csv",

@@ -27,6 +27,7 @@ class PeriodicRestart : public Fix {
   }
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
+  Role role() const override { return Role::output; }
 
   void init(Simulation& sim) override {
     path_.create_directory();
@@ -34,9 +35,13 @@ class PeriodicRestart : public Fix {
   }
 
   void end_of_step(Simulation& sim) override {
-    if (schedule_.due(sim)) write(sim);
+    if (schedule_.due(sim)) {
+      schedule_.done(sim);  // the state saved in the file counts this restart, as the run goes on after it
+      write(sim);
+    }
   }
 
+  // Ctrl-C: one more file, outside the schedule, so the periodic ones stay where they were.
   std::optional<std::string> write_restart_now(Simulation& sim) override {
     if (written_.empty() || written_.back().first != sim.step()) write(sim);
     return written_.back().second;
@@ -65,8 +70,6 @@ class PeriodicRestart : public Fix {
  private:
   void write(Simulation& sim) {
     const std::string path = path_.with(std::to_string(sim.step()));
-    // The state saved in the file already counts this file, as the run goes on after it.
-    schedule_.done(sim);
     written_.emplace_back(sim.step(), path);
     write_restart(sim, path);
     // Only now that the new file is complete, the oldest go.

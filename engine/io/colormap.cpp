@@ -13,12 +13,11 @@ namespace {
 
 // matplotlib's maps sampled at t = k / 32, k = 0..32 (rounded to 8 bits).
 constexpr Rgb kViridis[33] = {
-    {68, 1, 84},    {71, 13, 96},   {72, 24, 106},  {72, 35, 116},  {71, 45, 123},  {69, 55, 129},
-    {66, 64, 134},  {62, 73, 137},  {59, 82, 139},  {55, 91, 141},  {51, 99, 141},  {47, 107, 142},
-    {44, 114, 142}, {41, 122, 142}, {38, 130, 142}, {35, 137, 142}, {33, 145, 140}, {31, 152, 139},
-    {31, 160, 136}, {34, 167, 133}, {40, 174, 128}, {50, 182, 122}, {63, 188, 115}, {78, 195, 107},
-    {94, 201, 98},  {112, 207, 87}, {132, 212, 75}, {152, 216, 62}, {173, 220, 48}, {194, 223, 35},
-    {216, 226, 25}, {236, 229, 27}, {253, 231, 37},
+    {68, 1, 84},    {71, 13, 96},   {72, 24, 106},  {72, 35, 116},  {71, 45, 123},  {69, 55, 129},  {66, 64, 134},
+    {62, 73, 137},  {59, 82, 139},  {55, 91, 141},  {51, 99, 141},  {47, 107, 142}, {44, 114, 142}, {41, 122, 142},
+    {38, 130, 142}, {35, 137, 142}, {33, 145, 140}, {31, 152, 139}, {31, 160, 136}, {34, 167, 133}, {40, 174, 128},
+    {50, 182, 122}, {63, 188, 115}, {78, 195, 107}, {94, 201, 98},  {112, 207, 87}, {132, 212, 75}, {152, 216, 62},
+    {173, 220, 48}, {194, 223, 35}, {216, 226, 25}, {236, 229, 27}, {253, 231, 37},
 };
 constexpr Rgb kCoolwarm[33] = {
     {59, 76, 192},   {68, 90, 204},   {78, 104, 216},  {88, 117, 225},  {98, 130, 234},  {108, 143, 241},
@@ -78,11 +77,16 @@ Colormap::Colormap(const std::string& name) : name_(name), table_(kTableSize) {
   for (int k = 0; k < kTableSize; ++k) {
     const double t = static_cast<double>(k) / (kTableSize - 1);
     std::array<double, 3> c;
-    if (name == "viridis") c = from_stops(kViridis, t);
-    else if (name == "coolwarm") c = from_stops(kCoolwarm, t);
-    else if (name == "jet") c = jet(t);
-    else c = {255 * t, 255 * t, 255 * t};
-    for (int ch = 0; ch < 3; ++ch) table_[k][ch] = static_cast<unsigned char>(std::lround(std::clamp(c[ch], 0.0, 255.0)));
+    if (name == "viridis")
+      c = from_stops(kViridis, t);
+    else if (name == "coolwarm")
+      c = from_stops(kCoolwarm, t);
+    else if (name == "jet")
+      c = jet(t);
+    else
+      c = {255 * t, 255 * t, 255 * t};
+    for (int ch = 0; ch < 3; ++ch)
+      table_[k][ch] = static_cast<unsigned char>(std::lround(std::clamp(c[ch], 0.0, 255.0)));
   }
 }
 

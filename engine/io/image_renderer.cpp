@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <stb_image_write.h>
-#include <stb_truetype.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,12 +13,12 @@
 #include <utility>
 
 #include "engine/error.hpp"
+#include "engine/io/image_text.hpp"
 
 namespace pbf {
 
 namespace {
 
-constexpr const char* kFontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 constexpr double kFieldOfViewY = 30.0 * 3.14159265358979323846 / 180.0;
 constexpr double kFitMargin = 0.92;  // the bounding sphere spans 92% of the scene area's smaller side
 constexpr int kTile = 32;            // screen tiles of kTile x kTile pixels, one task each
@@ -41,116 +40,21 @@ Rgb ink_for(const Rgb& background) {
   return luminance >= 128 ? Rgb{25, 25, 25} : Rgb{230, 230, 230};
 }
 
-// Blends colour over pixel (x, y) with coverage alpha in [0, 1]; pixels outside are ignored.
-void blend(std::vector<unsigned char>& rgb, int width, int height, int x, int y, const Rgb& colour, float alpha) {
-  if (x < 0 || x >= width || y < 0 || y >= height) return;
-  unsigned char* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-  for (int c = 0; c < 3; ++c) p[c] = static_cast<unsigned char>(std::lround(p[c] + alpha * (colour[c] - p[c])));
-}
-
-// Unicode codepoints of UTF-8 text; a byte that starts no valid sequence reads as U+FFFD.
-std::vector<int> utf8_codepoints(const std::string& text) {
-  std::vector<int> out;
-  for (std::size_t i = 0; i < text.size();) {
-    const unsigned char lead = static_cast<unsigned char>(text[i]);
-    const std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 6 ? 2 : (lead >> 4) == 14 ? 3 : (lead >> 3) == 30 ? 4 : 0;
-    if (length == 0 || i + length > text.size()) {
-      out.push_back(0xFFFD), ++i;
-      continue;
-    }
-    int cp = length == 1 ? lead : lead & (0x7F >> length);
-    for (std::size_t k = 1; k < length; ++k) cp = (cp << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
-    out.push_back(cp), i += length;
-  }
-  return out;
-}
-
 }  // namespace
 
-// ---------------------------------------------------------------------------------------------
-// Text: DejaVu Sans through stb_truetype at one pixel size per renderer; printable ASCII is
-// rasterised once in the constructor, other characters when drawn.
-
-struct ImageRenderer::Font {
-  struct Glyph {
-    int x0 = 0, y0 = 0, w = 0, h = 0;  // bitmap offset from the pen position on the baseline
-    std::vector<unsigned char> alpha;  // w*h coverage, row-major
-  };
-  std::vector<unsigned char> ttf;  // the file; stbtt_fontinfo points into it
-  stbtt_fontinfo info{};
-  float scale = 0;   // font units to pixels
-  int pixels = 0;    // the font size: ascent minus descent, in pixels
-  int ascent = 0;    // pixels above the baseline
-  std::vector<Glyph> ascii;  // codepoints 32..126
-
-  explicit Font(int size_px) : pixels(size_px) {
-    std::ifstream in(kFontPath, std::ios::binary);
-    if (!in)
-      throw Error(fmt::format("image: cannot read the font {} (install the Debian package fonts-dejavu-core)", kFontPath));
-    ttf.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (!stbtt_InitFont(&info, ttf.data(), stbtt_GetFontOffsetForIndex(ttf.data(), 0)))
-      throw Error(fmt::format("image: {} is not a TrueType font (reinstall fonts-dejavu-core)", kFontPath));
-    scale = stbtt_ScaleForPixelHeight(&info, static_cast<float>(size_px));
-    int asc = 0, desc = 0, gap = 0;
-    stbtt_GetFontVMetrics(&info, &asc, &desc, &gap);
-    ascent = static_cast<int>(std::lround(asc * scale));
-    for (int cp = 32; cp < 127; ++cp) ascii.push_back(rasterise(cp));
-  }
-
-  Glyph rasterise(int codepoint) const {
-    Glyph g;
-    unsigned char* bitmap = stbtt_GetCodepointBitmap(&info, 0, scale, codepoint, &g.w, &g.h, &g.x0, &g.y0);
-    if (bitmap) g.alpha.assign(bitmap, bitmap + static_cast<std::size_t>(g.w) * g.h);
-    stbtt_FreeBitmap(bitmap, nullptr);
-    return g;
-  }
-
-  float advance(int codepoint, int next) const {
-    int advance_units = 0, left_bearing = 0;
-    stbtt_GetCodepointHMetrics(&info, codepoint, &advance_units, &left_bearing);
-    const int kern = next ? stbtt_GetCodepointKernAdvance(&info, codepoint, next) : 0;
-    return scale * static_cast<float>(advance_units + kern);
-  }
-
-  int width(const std::string& text) const {
-    const auto cps = utf8_codepoints(text);
-    float pen = 0;
-    for (std::size_t k = 0; k < cps.size(); ++k) pen += advance(cps[k], k + 1 < cps.size() ? cps[k + 1] : 0);
-    return static_cast<int>(std::ceil(pen));
-  }
-
-  // Draws text with its baseline at y, starting at x; clipped to the image.
-  void draw(std::vector<unsigned char>& rgb, int width, int height, int x, int y, const std::string& text,
-            const Rgb& colour) const {
-    const auto cps = utf8_codepoints(text);
-    float pen = static_cast<float>(x);
-    for (std::size_t k = 0; k < cps.size(); ++k) {
-      const int cp = cps[k];
-      const Glyph uncached = cp >= 32 && cp < 127 ? Glyph{} : rasterise(cp);
-      const Glyph& g = cp >= 32 && cp < 127 ? ascii[cp - 32] : uncached;
-      const int gx = static_cast<int>(std::lround(pen)) + g.x0, gy = y + g.y0;
-      for (int row = 0; row < g.h; ++row)
-        for (int col = 0; col < g.w; ++col) {
-          const unsigned char a = g.alpha[static_cast<std::size_t>(row) * g.w + col];
-          if (a) blend(rgb, width, height, gx + col, gy + row, colour, a / 255.0f);
-        }
-      pen += advance(cp, k + 1 < cps.size() ? cps[k + 1] : 0);
-    }
-  }
-};
 
 namespace {
 
 // Where the colour bar goes; the scene is centred in the rest of the image. Fixed by the spec
 // alone (not by vmin, vmax) so that the camera does not jump between frames.
 struct Layout {
-  int scene_width;          // the image width less the colour bar strip
+  int scene_width;  // the image width less the colour bar strip
   int bar_x, bar_y, bar_w, bar_h;
   int tick_length, margin;
 };
 
-Layout make_layout(const ImageSpec& spec, const ImageRenderer::Font& font) {
-  const int W = spec.width, H = spec.height, fs = font.pixels;
+Layout make_layout(const ImageSpec& spec, const TextRenderer& font) {
+  const int W = spec.width, H = spec.height, fs = font.pixels();
   Layout l{};
   l.margin = fs;
   l.tick_length = std::max(3, fs / 3);
@@ -218,22 +122,22 @@ struct Disc {
 struct TileBins {
   int area_width, area_height;  // the scene area, at the image's top left
   int tiles_x, tiles_y;
-  std::vector<std::size_t> start;     // tile t's particles are particles[start[t] .. start[t+1])
+  std::vector<std::size_t> start;  // tile t's particles are particles[start[t] .. start[t+1])
   std::vector<std::uint32_t> particles;
 };
 
 // Projects every particle into discs and bins them into tiles by a counting sort over
 // (tile, thread), with per-thread histograms of contiguous index blocks as in NeighborGrid:
 // the order within a tile is ascending index at any thread count.
-TileBins project_and_bin(const Camera& cam, const Colormap& colormap, double sphere_radius, int scene_width,
-                         int height, const real* x, const real* y, const real* z, const double* value, std::size_t n,
-                         double vmin, double vmax, std::vector<Disc>& discs) {
+TileBins project_and_bin(const Camera& cam, const Colormap& colormap, double sphere_radius, int scene_width, int height,
+                         const real* x, const real* y, const real* z, const double* value, std::size_t n, double vmin,
+                         double vmax, std::vector<Disc>& discs) {
   TileBins bins{scene_width, height, (scene_width + kTile - 1) / kTile, (height + kTile - 1) / kTile, {}, {}};
   const int tile_count = bins.tiles_x * bins.tiles_y;
   bins.start.assign(tile_count + 1, 0);
   discs.resize(n);
   std::vector<std::vector<std::size_t>> histogram(omp_get_max_threads());
-#pragma omp parallel num_threads(static_cast<int>(histogram.size()))
+#pragma omp parallel num_threads(static_cast <int>(histogram.size()))
   {
     const int t = omp_get_thread_num(), team = omp_get_num_threads();
     const std::size_t begin = n * t / team, end = n * (t + 1) / team;
@@ -272,7 +176,8 @@ TileBins project_and_bin(const Camera& cam, const Colormap& colormap, double sph
       int tx0, tx1, ty0, ty1;
       discs[i].tiles(bins.tiles_x, bins.tiles_y, tx0, tx1, ty0, ty1);
       for (int ty = ty0; ty <= ty1; ++ty)
-        for (int tx = tx0; tx <= tx1; ++tx) bins.particles[hist[ty * bins.tiles_x + tx]++] = static_cast<std::uint32_t>(i);
+        for (int tx = tx0; tx <= tx1; ++tx)
+          bins.particles[hist[ty * bins.tiles_x + tx]++] = static_cast<std::uint32_t>(i);
     }
   }
   return bins;
@@ -293,7 +198,9 @@ void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs,
     const Disc& d = discs[i];
     const float inv_r2 = 1.0f / (d.r * d.r);
     // The pixels whose centres (p + 0.5) may lie inside the disc, within the tile.
-    auto first = [](float lo, int begin, int end) { return int(std::clamp(std::ceil(lo - 0.5f), float(begin), float(end))); };
+    auto first = [](float lo, int begin, int end) {
+      return int(std::clamp(std::ceil(lo - 0.5f), float(begin), float(end)));
+    };
     const int row0 = first(d.sy - d.r, y0, y1), row1 = first(d.sy + d.r, y0, y1);
     const int col0 = first(d.sx - d.r, x0, x1), col1 = first(d.sx + d.r, x0, x1);
     for (int py = row0; py < row1; ++py) {
@@ -330,7 +237,8 @@ void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs,
       for (int power = 1; power < SphereShading::shininess; power *= 2) highlight *= highlight;
       const float lit = SphereShading::ambient + SphereShading::diffuse * lambert;
       const float shine = 255.0f * SphereShading::specular * highlight;
-      for (int c = 0; c < 3; ++c) out[c] = static_cast<unsigned char>(std::min(255.0f, d.colour[c] * lit + shine + 0.5f));
+      for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<unsigned char>(std::min(255.0f, d.colour[c] * lit + shine + 0.5f));
     }
 }
 
@@ -380,7 +288,7 @@ void draw_box(const Camera& cam, const Domain& domain, const std::vector<float>&
     }
 }
 
-void draw_colorbar(const Layout& l, const Colormap& colormap, const ImageRenderer::Font& font, double vmin, double vmax,
+void draw_colorbar(const Layout& l, const Colormap& colormap, const TextRenderer& font, double vmin, double vmax,
                    const std::string& label, std::vector<unsigned char>& rgb, int W, int H, const Rgb& ink) {
   for (int row = 0; row < l.bar_h; ++row) {  // top row is vmax
     const Rgb c = colormap(1.0 - static_cast<double>(row) / std::max(1, l.bar_h - 1));
@@ -389,17 +297,18 @@ void draw_colorbar(const Layout& l, const Colormap& colormap, const ImageRendere
   for (int k = -1; k <= l.bar_w; ++k)  // a thin frame
     blend(rgb, W, H, l.bar_x + k, l.bar_y - 1, ink, 1.0f), blend(rgb, W, H, l.bar_x + k, l.bar_y + l.bar_h, ink, 1.0f);
   for (int row = 0; row < l.bar_h; ++row)
-    blend(rgb, W, H, l.bar_x - 1, l.bar_y + row, ink, 1.0f), blend(rgb, W, H, l.bar_x + l.bar_w, l.bar_y + row, ink, 1.0f);
+    blend(rgb, W, H, l.bar_x - 1, l.bar_y + row, ink, 1.0f),
+        blend(rgb, W, H, l.bar_x + l.bar_w, l.bar_y + row, ink, 1.0f);
   for (double value : colorbar_ticks(vmin, vmax)) {
     const int y = l.bar_y + static_cast<int>(std::lround((vmax - value) / (vmax - vmin) * (l.bar_h - 1)));
     for (int k = 0; k < l.tick_length; ++k) blend(rgb, W, H, l.bar_x + l.bar_w + k, y, ink, 1.0f);
     const std::string text = fmt::format("{:.3g}", value == 0 ? 0.0 : value);  // no "-0"
-    font.draw(rgb, W, H, l.bar_x + l.bar_w + l.tick_length + font.pixels / 3, y + font.pixels * 3 / 8, text, ink);
+    font.draw(rgb, W, H, l.bar_x + l.bar_w + l.tick_length + font.pixels() / 3, y + font.pixels() * 3 / 8, text, ink);
   }
   if (!label.empty()) {  // centred over the bar, kept inside the image
     const int text_width = font.width(label);
     const int x = std::max(0, std::min(l.bar_x + l.bar_w / 2 - text_width / 2, W - text_width - 2));
-    font.draw(rgb, W, H, x, l.bar_y - font.pixels * 3 / 4, label, ink);
+    font.draw(rgb, W, H, x, l.bar_y - font.pixels() * 3 / 4, label, ink);
   }
 }
 
@@ -408,18 +317,22 @@ void draw_colorbar(const Layout& l, const Colormap& colormap, const ImageRendere
 // ---------------------------------------------------------------------------------------------
 
 ImageRenderer::ImageRenderer(const ImageSpec& spec) : spec_(spec), colormap_(spec.colormap) {
-  if (spec.width < 16 || spec.width > 8192) throw Error(fmt::format("image: width must be 16..8192 pixels, got {}", spec.width));
-  if (spec.height < 16 || spec.height > 8192) throw Error(fmt::format("image: height must be 16..8192 pixels, got {}", spec.height));
-  if (!(spec.zoom > 0) || !std::isfinite(spec.zoom)) throw Error(fmt::format("image: zoom must be > 0, got {}", spec.zoom));
+  if (spec.width < 16 || spec.width > 8192)
+    throw Error(fmt::format("image: width must be 16..8192 pixels, got {}", spec.width));
+  if (spec.height < 16 || spec.height > 8192)
+    throw Error(fmt::format("image: height must be 16..8192 pixels, got {}", spec.height));
+  if (!(spec.zoom > 0) || !std::isfinite(spec.zoom))
+    throw Error(fmt::format("image: zoom must be > 0, got {}", spec.zoom));
   if (!(spec.radius > 0) || !std::isfinite(spec.radius))
     throw Error(fmt::format("image: radius (of the particle spheres, m) must be > 0, got {}", spec.radius));
-  if (!finite(spec.direction) || norm(spec.direction) == 0) throw Error("image: direction must be a finite non-zero vector");
+  if (!finite(spec.direction) || norm(spec.direction) == 0)
+    throw Error("image: direction must be a finite non-zero vector");
   if (!finite(spec.up) || norm(spec.up) == 0) throw Error("image: up must be a finite non-zero vector");
   // Parallel (the sine of the angle below 1e-3) leaves the camera's roll undefined.
   if (norm(cross(spec.direction, spec.up)) <= 1e-3 * norm(spec.direction) * norm(spec.up))
     throw Error("image: direction must not be parallel to up");
   if (spec.center && !finite(*spec.center)) throw Error("image: center must be finite");
-  font_ = std::make_shared<const Font>(std::clamp(spec.height / 36, 10, 96));
+  font_ = std::make_shared<const TextRenderer>(std::clamp(spec.height / 36, 10, 96));
 }
 
 void ImageRenderer::render(const Domain& domain, const real* x, const real* y, const real* z, const double* value,
@@ -452,7 +365,7 @@ void ImageRenderer::render(const Domain& domain, const real* x, const real* y, c
   const Rgb ink = ink_for(spec_.background);
   if (spec_.draw_box) draw_box(cam, domain, depth, layout.scene_width, rgb, W, H, ink);
   if (spec_.colorbar) draw_colorbar(layout, colormap_, *font_, vmin, vmax, spec_.label, rgb, W, H, ink);
-  if (!caption.empty()) font_->draw(rgb, W, H, font_->pixels * 2 / 3, font_->pixels / 2 + font_->ascent, caption, ink);
+  if (!caption.empty()) font_->draw(rgb, W, H, font_->pixels() * 2 / 3, font_->pixels() / 2 + font_->ascent(), caption, ink);
 }
 
 void write_png(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {

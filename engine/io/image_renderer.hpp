@@ -20,17 +20,19 @@
 
 #include "engine/domain.hpp"
 #include "engine/io/colormap.hpp"
+#include "engine/io/image_text.hpp"
 #include "engine/real.hpp"
 
 namespace pbf {
 
 struct ImageSpec {
-  int width = 800, height = 600;               // pixels
-  std::array<double, 3> direction{-1, -2, -1};  // view direction: from the camera toward the look-at point (need not be unit)
+  int width = 800, height = 600;  // pixels
+  std::array<double, 3> direction{-1, -2,
+                                  -1};  // view direction: from the camera toward the look-at point (need not be unit)
   std::array<double, 3> up{0, 0, 1};
   std::optional<std::array<double, 3>> center;  // look-at point; default the domain centre
-  double zoom = 1.0;    // 1: the whole domain box fits in the image with a small margin; 2: twice as large
-  double radius = 0;    // sphere radius in metres drawn per particle; must be set (> 0)
+  double zoom = 1.0;                 // 1: the whole domain box fits in the image with a small margin; 2: twice as large
+  double radius = 0;                 // sphere radius in metres drawn per particle; must be set (> 0)
   std::string colormap = "viridis";  // Colormap::names()
   std::string label;                 // colour bar title, e.g. "speed (m/s)"
   bool draw_box = true;              // draw the domain box edges as lines
@@ -67,12 +69,10 @@ class ImageRenderer {
   int height() const { return spec_.height; }
   const ImageSpec& spec() const { return spec_; }
 
-  struct Font;  // the loaded TrueType font and its cached glyphs (stb_truetype), immutable
-
  private:
   ImageSpec spec_;
   Colormap colormap_;
-  std::shared_ptr<const Font> font_;  // shared: copies of a renderer share the font
+  std::shared_ptr<const TextRenderer> font_;  // shared: copies of a renderer share the font
 };
 
 // Writes an RGB image (width*height*3 bytes, top row first) as PNG via stb_image_write;

@@ -95,13 +95,16 @@ ParticleInput interpret_particles(const ParticleTable& table) {
   ParticleInput in;
   static const char* const xyz[3] = {"x", "y", "z"};
   static const char* const vxyz[3] = {"vx", "vy", "vz"};
+  // ParaView's "Save Data" as CSV names vector components NAME:0, NAME:1, NAME:2.
+  static const char* const paraview_points[3] = {"Points:0", "Points:1", "Points:2"};
+  static const char* const paraview_velocity[3] = {"velocity:0", "velocity:1", "velocity:2"};
   std::vector<double>* position[3] = {&in.x, &in.y, &in.z};
   std::vector<double>* velocity[3] = {&in.vx, &in.vy, &in.vz};
-  if (!pick.vector("position", xyz, position))
-    pick.fail(fmt::format("no particle positions: expected a 3-component column 'position' or columns x, y, z; "
-                          "found: {}", pick.found()));
+  if (!pick.vector("position", xyz, position) && !pick.vector("", paraview_points, position))
+    pick.fail(fmt::format("no particle positions: expected a 3-component column 'position' or columns x, y, z "
+                          "(or ParaView's Points:0, Points:1, Points:2); found: {}", pick.found()));
   if (table.count == 0) pick.fail("the file holds no particles");
-  if (!pick.vector("velocity", vxyz, velocity))
+  if (!pick.vector("velocity", vxyz, velocity) && !pick.vector("", paraview_velocity, velocity))
     for (auto* v : velocity) v->assign(table.count, 0.0);
   if (const Column* m = pick.take("mass", 1)) in.mass = m->values;
   in.ignored = pick.unused();

@@ -81,7 +81,8 @@ bool write_all(int fd, const unsigned char* bytes, std::size_t size) {
 
 std::vector<unsigned char> read_file(const std::string& path, const std::string& what) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(what + ": no such file");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw Error(what + (std::filesystem::exists(path, ec) ? ": not a regular file" : ": no such file"));
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw Error(fmt::format("{}: cannot open it ({})", what, std::strerror(errno)));
   std::vector<unsigned char> bytes(std::filesystem::file_size(path, ec));

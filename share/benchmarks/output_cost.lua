@@ -13,7 +13,7 @@ if var.read then
   return
 end
 local N = var.particles or 30000
-local steps = var.steps or 40
+local steps = var.steps or 100
 local every = var.every or 10
 local a, g = 0.1, 9.81
 local layers = math.floor(N ^ (1 / 3) + 0.5)
