@@ -102,6 +102,37 @@ TEST(ImageRenderer, NearerParticleHidesFartherOne) {
   }
 }
 
+// A camera placed by position: it looks at the centre, so a particle at the centre lands in
+// the image centre, and its disc's radius follows the distance (half as far, twice as large).
+TEST(ImageRenderer, CameraPositionSetsViewAndDistance) {
+  auto disc_radius = [](double distance) {
+    ImageSpec spec = plain_spec(0.05);
+    spec.direction = {0, 0, 1};          // unused once a position is given
+    spec.eye = std::array<double, 3>{0.5 + distance, 0.5, 0.5};  // on the +x side, looking along -x
+    const ImageRenderer renderer(spec);
+    const real x = 0.5, y = 0.5, z = 0.5;
+    const double value = 0.5;
+    std::vector<unsigned char> rgb;
+    renderer.render(unit_box(), &x, &y, &z, &value, 1, 0.0, 1.0, "", rgb);
+    double sum_x = 0, sum_y = 0, count = 0;
+    for (int py = 0; py < kHeight; ++py)
+      for (int px = 0; px < kWidth; ++px)
+        if (!is_background(pixel(rgb, kWidth, px, py), spec)) sum_x += px + 0.5, sum_y += py + 0.5, ++count;
+    EXPECT_NEAR(sum_x / count, 0.5 * kWidth, 0.01);
+    EXPECT_NEAR(sum_y / count, 0.5 * kHeight, 0.01);
+    return std::sqrt(count / M_PI);
+  };
+  const double focal = 0.5 * kHeight / std::tan(15 * M_PI / 180);
+  EXPECT_NEAR(disc_radius(2.0), focal * 0.05 / 2.0, 0.3);  // about 7.5 px
+  EXPECT_NEAR(disc_radius(1.0), focal * 0.05 / 1.0, 0.3);  // about 15 px
+  ImageSpec looking_up = plain_spec(0.05);
+  looking_up.eye = std::array<double, 3>{0.5, 0.5, -3};  // straight below: along 'up'
+  std::vector<unsigned char> rgb;
+  const real c = 0.5;
+  const double v = 0;
+  EXPECT_THROW(ImageRenderer(looking_up).render(unit_box(), &c, &c, &c, &v, 1, 0, 1, "", rgb), pbf::Error);
+}
+
 TEST(ImageRenderer, NanIsGreyAndValuesClamp) {
   const ImageSpec spec = plain_spec(0.1);
   const ImageRenderer renderer(spec);

@@ -79,7 +79,12 @@ struct Camera {
     const Vec3 lo{domain.lo[0], domain.lo[1], domain.lo[2]}, hi{domain.hi[0], domain.hi[1], domain.hi[2]};
     const Vec3 mid = scaled({lo[0] + hi[0], lo[1] + hi[1], lo[2] + hi[2]}, 0.5);
     const double bounding_radius = std::max(0.5 * norm(sub(hi, lo)), 1e-12);
-    forward = scaled(spec.direction, 1 / norm(spec.direction));
+    const Vec3 target = spec.center.value_or(mid);
+    forward = spec.eye ? sub(target, *spec.eye) : spec.direction;
+    if (!(norm(forward) > 0) || !finite(forward)) throw Error("image: the camera position is the point it looks at");
+    forward = scaled(forward, 1 / norm(forward));
+    if (norm(cross(forward, spec.up)) <= 1e-3 * norm(spec.up))
+      throw Error("image: the camera looks along 'up'; choose another 'up' or camera position");
     right = cross(forward, spec.up);
     right = scaled(right, 1 / norm(right));
     up = cross(right, forward);
@@ -90,9 +95,9 @@ struct Camera {
     const double focal_zoom1 = 0.5 * spec.height / std::tan(0.5 * kFieldOfViewY);
     const double outline = 0.5 * kFitMargin * std::min(scene_width, spec.height);
     const double distance = bounding_radius / std::sin(std::atan(outline / focal_zoom1));
-    eye = sub(spec.center.value_or(mid), scaled(forward, distance));
+    eye = spec.eye ? *spec.eye : sub(target, scaled(forward, distance));
     focal = focal_zoom1 * spec.zoom;
-    near = 1e-6 * distance;
+    near = 1e-6 * norm(sub(target, eye));
   }
 
   // Camera coordinates of a world point: lateral x, y and depth along the view direction.
@@ -329,9 +334,11 @@ ImageRenderer::ImageRenderer(const ImageSpec& spec) : spec_(spec), colormap_(spe
     throw Error("image: direction must be a finite non-zero vector");
   if (!finite(spec.up) || norm(spec.up) == 0) throw Error("image: up must be a finite non-zero vector");
   // Parallel (the sine of the angle below 1e-3) leaves the camera's roll undefined.
-  if (norm(cross(spec.direction, spec.up)) <= 1e-3 * norm(spec.direction) * norm(spec.up))
+  // (With a camera position, the direction is from it to the centre, checked when drawing.)
+  if (!spec.eye && norm(cross(spec.direction, spec.up)) <= 1e-3 * norm(spec.direction) * norm(spec.up))
     throw Error("image: direction must not be parallel to up");
   if (spec.center && !finite(*spec.center)) throw Error("image: center must be finite");
+  if (spec.eye && !finite(*spec.eye)) throw Error("image: the camera position must be finite");
   font_ = std::make_shared<const TextRenderer>(std::clamp(spec.height / 36, 10, 96));
 }
 

@@ -31,6 +31,7 @@ struct ImageSpec {
                                   -1};  // view direction: from the camera toward the look-at point (need not be unit)
   std::array<double, 3> up{0, 0, 1};
   std::optional<std::array<double, 3>> center;  // look-at point; default the domain centre
+  std::optional<std::array<double, 3>> eye;     // camera position; default: back along direction, the domain in view
   double zoom = 1.0;                 // 1: the whole domain box fits in the image with a small margin; 2: twice as large
   double radius = 0;                 // sphere radius in metres drawn per particle; must be set (> 0)
   std::string colormap = "viridis";  // Colormap::names()

@@ -25,6 +25,10 @@ std::vector<ParamSpec> ParticleImages::params() {
       {"direction", ParamType::Vector3, Vec3{-1, -2, -1}, "", "view direction, from the camera toward the centre"},
       {"up", ParamType::Vector3, Vec3{0, 0, 1}, "", "the direction that points up in the image"},
       {"center", ParamType::Vector3, std::nullopt, "m", "point the camera looks at (default: the domain's centre)", true},
+      {"position", ParamType::Vector3, std::nullopt, "m",
+       "camera position, looking at the centre ('direction' is then unused; default: back along 'direction', "
+       "far enough to see the whole domain)",
+       true},
       {"zoom", ParamType::Real, 1.0, "", "magnification; 1 shows the whole domain"},
       {"radius", ParamType::Real, 0.0, "m", "sphere radius drawn per particle (0: 0.55 of the particle spacing)"},
       {"box", ParamType::Bool, true, "", "draw the domain's edges"},
@@ -40,6 +44,7 @@ ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")
   spec_.direction = p.vec3("direction");
   spec_.up = p.vec3("up");
   if (p.has("center")) spec_.center = p.vec3("center");
+  if (p.has("position")) spec_.eye = p.vec3("position");
   spec_.zoom = p.real("zoom");
   spec_.radius = p.real("radius");
   if (spec_.radius < 0) throw Error("'radius' must be >= 0");
