@@ -9,6 +9,10 @@ void register_builtin_styles(StyleRegistry& r) {
   register_box(r);
   register_vorticity(r);
   register_xsph(r);
+  register_wcsph(r);
+  register_sph_viscosity(r);
+  register_leapfrog(r);
+  register_cfl(r);
   register_dump_text(r);
   register_dump_vtk(r);
   register_dump_image(r);

@@ -35,6 +35,9 @@ class Fix {
   // How many constraint iterations a step needs (the run takes the largest; at least 1).
   virtual int constraint_iterations() const { return 0; }
   virtual bool needs_neighbors() const { return false; }
+  // The fastest signal this fix's physics carries (a weakly compressible solver's sound
+  // speed, m/s; 0: none): time-step control keeps dt below h over it.
+  virtual double signal_speed() const { return 0; }
   // Walls that add to the density the solver sees (nullptr: none).
   virtual DensityBoundary* density_boundary() { return nullptr; }
 

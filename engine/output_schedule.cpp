@@ -28,6 +28,7 @@ void OutputSchedule::start(const Simulation& sim) {
 bool OutputSchedule::due(const Simulation& sim) const {
   if (sim.step() == last_step_) return false;
   if (!at_start_ && sim.step() == start_step_) return false;
+  if (at_start_ && count_ == 0) return true;  // the first output: the state the schedule starts from
   if (every_ > 0) return sim.step() % every_ == 0;
   const double next = static_cast<double>(count_ + (at_start_ ? 0 : 1)) * interval_;
   return sim.time() - start_time_ >= next * (1 - 1e-9);

@@ -20,7 +20,8 @@ constexpr Role kRoles[] = {Role::solver, Role::other, Role::boundary, Role::outp
 class RunLoop {
  public:
   explicit RunLoop(Simulation& sim) : sim_(sim) {}
-  void run(std::int64_t steps);
+  // `steps` steps, or (steps < 0) until the time reaches `until`.
+  void run(std::int64_t steps, double until);
 
  private:
   struct Hook {
@@ -47,7 +48,15 @@ class RunLoop {
   double full_neighborhood_ = 0;  // particles within h of one at rest density
 };
 
-void Simulation::run(std::int64_t steps) { RunLoop(*this).run(steps); }
+void Simulation::run(std::int64_t steps) {
+  if (steps < 0) throw Error(fmt::format("run: the number of steps must be >= 0, got {}", steps));
+  RunLoop(*this).run(steps, 0);
+}
+
+void Simulation::run_until(double time) {
+  if (!std::isfinite(time)) throw Error(fmt::format("run_until: the end time must be finite, got {}", time));
+  RunLoop(*this).run(-1, time);
+}
 
 void RunLoop::prepare() {
   auto& P = sim_.particles_;
@@ -102,15 +111,16 @@ void RunLoop::prepare() {
 }
 
 
-void RunLoop::run(std::int64_t steps) {
-  if (steps < 0) throw Error(fmt::format("run: the number of steps must be >= 0, got {}", steps));
+void RunLoop::run(std::int64_t steps, double until) {
   const double start = now();
   prepare();
   sim_.thermo_.start_run(sim_);
   const std::int64_t first = sim_.step_, last = first + steps;
+  const double t0 = sim_.time(), end = until - 1e-12 * std::max(1.0, std::fabs(until));
+  auto more = [&] { return steps >= 0 ? sim_.step_ < last : sim_.time() < end; };
   double next_progress = start + 10.0;
   InterruptWatch interrupt;
-  for (std::int64_t s = first; s < last; ++s) {
+  while (more()) {
     try {
       step();
     } catch (const Error& e) {
@@ -123,16 +133,18 @@ void RunLoop::run(std::int64_t steps) {
     }
     if (InterruptWatch::requested()) stop_interrupted();
     if (now() >= next_progress) {
-      const double elapsed = now() - start, rate = static_cast<double>(sim_.step_ - first) / elapsed;
-      spdlog::info("progress: step {} of {} ({:.0f}%), {:.1f} steps/s, about {:.0f} s left", sim_.step_, last,
-                   100.0 * static_cast<double>(sim_.step_ - first) / static_cast<double>(steps), rate,
-                   static_cast<double>(last - sim_.step_) / rate);
+      const double elapsed = now() - start;
+      const double done = steps >= 0 ? static_cast<double>(sim_.step_ - first) / static_cast<double>(steps)
+                                     : (sim_.time() - t0) / (until - t0);
+      spdlog::info("progress: step {}, t = {:.6g} s ({:.0f}%), {:.1f} steps/s, about {:.0f} s left", sim_.step_,
+                   sim_.time(), 100.0 * done, static_cast<double>(sim_.step_ - first) / elapsed,
+                   elapsed * (1 - done) / std::max(done, 1e-9));
       next_progress = now() + 10.0;
     }
   }
   for (const auto& f : sim_.fixes_) f->finish(sim_);
   timing_.wall_seconds = now() - start;
-  timing_.steps = steps;
+  timing_.steps = sim_.step_ - first;
   timing_.particles = sim_.particles_.size();
   timing_.neighbor_mean = neighbor_builds_ ? neighbor_mean_sum_ / static_cast<double>(neighbor_builds_) : 0;
   spdlog::info("{}", timing_.format());

@@ -83,6 +83,9 @@ class Simulation {
 
   // Runs `steps` steps; may be called again, with the pipeline changed in between.
   void run(std::int64_t steps);
+  // Runs until the time reaches `time` (within a relative 1e-12): with a time step that
+  // changes as the run goes (fix cfl), the number of steps is not known in advance.
+  void run_until(double time);
   const TimingTable& last_timing() const { return timing_; }
 
   // --- services for fixes and computes ---

@@ -14,6 +14,9 @@
 -- out/thermo.csv), iterations (default 4), vorticity (confinement epsilon, default 0.05),
 -- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false) and scorr_k to compare
 -- the solver variants of docs/physics.md (default: the styles' defaults, pbfengine help pbf).
+-- solver: "pbf" (default) or "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000
+-- particles by default, as its steps are set by the sound speed: alpha, eos and fixed_dt
+-- pass to it; scenarios/dambreak_wcsph.lua runs it).
 -- Output beyond the text frames: images (seconds between PNG pictures, out/image_*.png),
 -- movie (an mp4 path, 50 pictures per simulated second), vtk (seconds between ParaView
 -- frames, out/vtk/frame_*.vtu and out/vtk/frame.pvd).
@@ -26,7 +29,9 @@ local function flag(value, default)
   if value == nil then return default end
   return not (value == false or value == 0 or value == "false")
 end
-local N = var.particles or 30000
+local solver = var.solver or "pbf"
+assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
+local N = var.particles or (solver == "wcsph" and 8000 or 30000)
 local t_end = var.t_end or 1.0
 local a = var.a or 0.1
 local out = var.out or "out"
@@ -38,6 +43,8 @@ local s = a / layers
 local h = 2 * s
 local depth = layers // 2 * s
 local dt = var.dt or 0.4 * h / math.sqrt(2 * g * 2 * a)   -- 0.4 h per step at the free-fall speed
+-- WCSPH steps are set by the sound speed c0 = 10 sqrt(2 g 2a) (fix cfl; dt above is their bound)
+local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * g * 2 * a)) or dt
 
 if var.restart then
   local r = pbf.read_restart(var.restart)   -- domain, h, dt, particles, step and time
@@ -52,10 +59,14 @@ else
 end
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
-pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
+if solver == "wcsph" then
+  require("solvers").wcsph{alpha = var.alpha, eos = var.eos, fixed_dt = var.fixed_dt}
+else
+  pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
+  pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
+  pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
+end
 pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
-pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
-pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 -- Pictures, movie and ParaView frames on request (share/lua/outputs.lua).
 require("outputs").add(out, {color = "speed", min = 0, max = 2.5, direction = {1, 2.2, -0.9}, zoom = 1.4})
 if out ~= "" then
@@ -70,13 +81,12 @@ end
 pbf.compute("err", "density_error")
 pbf.compute("front", "front", {axis = "x", percentile = 99})
 pbf.compute("ke", "kinetic_energy")
-pbf.thermo{every = math.max(1, math.floor(0.01 / dt)),
+pbf.thermo{every = math.max(1, math.floor(0.01 / dt_typical)),
            -- a continued run keeps the first run's CSV: its own starts at the restart's step
            csv = var.csv or (out ~= "" and (var.restart and string.format("%s/thermo.%d.csv", out, pbf.step())
                                                      or out .. "/thermo.csv") or nil),
-           columns = {"step", "time", "front", "err.avg", "err.max", "ke"}}
+           columns = {"step", "time", "dt", "front", "err.avg", "err.max", "ke"}}
 
-local steps = math.max(0, math.ceil((t_end - pbf.time()) / dt - 1e-9))
-print(string.format("dam break: %d particles, a = %g m, h %.4g m, dt %.4g s, %d steps to t = %g s",
-                    pbf.count(), a, pbf.kernel_radius(), dt, steps, t_end))
-pbf.run(steps)
+print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %.4g s, to t = %g s", solver,
+                    pbf.count(), a, pbf.kernel_radius(), dt, t_end))
+pbf.run_until(t_end)

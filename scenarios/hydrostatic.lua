@@ -8,7 +8,9 @@
 -- 2), height (column height in m, default 0.4; the footprint is height/2 square),
 -- iterations, one_sided, wall_density and scorr_k (default: the styles' defaults, see
 -- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
--- csv (thermo CSV file, default none), out (frame directory, default none).
+-- csv (thermo CSV file, default none), out (frame directory, default none), solver ("pbf",
+-- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha).
+package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
 local function flag(value, default)
   if value == nil then return default end
   return not (value == false or value == 0 or value == "false")
@@ -28,9 +30,13 @@ pbf.timestep(dt)
 pbf.lattice{lo = {0, 0, 0}, hi = {W, W, H}, spacing = s}
 
 pbf.fix("gravity", "gravity", {})
-pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
+if (var.solver or "pbf") == "wcsph" then
+  require("solvers").wcsph{alpha = var.alpha, fixed_dt = var.fixed_dt}
+else
+  pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
+  pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
+end
 pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
-pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 if var.out then pbf.fix("frames", "dump/text", {path = var.out .. "/frame_*.txt", interval = 0.05}) end
 
 pbf.compute("err", "density_error")
@@ -42,4 +48,4 @@ pbf.thermo{every = math.max(1, math.floor(0.1 / dt)), csv = var.csv,
            columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.avg", "v.max", "top", "box.zmin"}}
 
 print(string.format("hydrostatic: %d particles, spacing %.4g m, h %.4g m, dt %.4g s", pbf.count(), s, h, dt))
-pbf.run(math.ceil(t_end / dt - 1e-9))
+pbf.run_until(t_end)

@@ -6,7 +6,11 @@
 --   pbfengine run scenarios/init_file.lua -v init=PATH [-v out=DIR] [-v iterations=N]
 --
 -- Variables: init (the scene file, required), out (frame directory, default "out"),
--- iterations (constraint iterations per step, default 4).
+-- iterations (constraint iterations per step, default 4), solver ("pbf", the default, or
+-- "wcsph": weakly compressible SPH, share/lua/solvers.lua; the file's time step is then an
+-- upper bound, the CFL control takes smaller steps as needed, and ends steps on the output
+-- interval so that frames stay on it).
+package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
 local init = var.init or error("missing variable 'init': give the scene file with -v init=PATH")
 local out = var.out or "out"
 local iterations = var.iterations or 4
@@ -14,14 +18,18 @@ local iterations = var.iterations or 4
 local scene = pbf.read_scene(init)   -- sets the domain [0, L]^3, h and the time step
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -9.81}})
-pbf.fix("pbf", "pbf", {iterations = iterations})
+if (var.solver or "pbf") == "wcsph" then
+  require("solvers").wcsph{align = scene.interval}
+else
+  pbf.fix("pbf", "pbf", {iterations = iterations})
+  pbf.fix("vorticity", "vorticity", {})
+  pbf.fix("xsph", "xsph", {})
+end
 pbf.fix("walls", "box", {})
-pbf.fix("vorticity", "vorticity", {})
-pbf.fix("xsph", "xsph", {})
 pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = scene.interval})
 
 pbf.compute("err", "density_error")
 pbf.thermo{every = 100, columns = {"step", "time", "err.avg", "err.max"}}
 
 -- The first step whose time reaches the final time is the last (n dt >= t_final).
-pbf.run(math.ceil(scene.t_final / scene.dt - 1e-9))
+pbf.run_until(scene.t_final)

@@ -124,22 +124,37 @@ int l_every(lua_State* L) {
   return 0;
 }
 
-int l_run(lua_State* L) {
-  State& S = state(L);
-  S.not_running("pbf.run");
-  const std::int64_t steps = lua::integer(L, 1, "pbf.run: the number of steps");
+// A run from the script: callbacks may not change the pipeline meanwhile, and Ctrl-C ends
+// the script even when a pcall catches the error it raises.
+template <class F>
+void guarded_run(State& S, F&& run) {
+  if (S.interrupted) throw *S.interrupted;
   struct Running {
     bool& flag;
     ~Running() { flag = false; }
   } guard{S.running};
-  if (S.interrupted) throw *S.interrupted;  // a pcall caught Ctrl-C: still no more running
   S.running = true;
   try {
-    S.sim.run(steps);
+    run();
   } catch (const Interrupted& e) {
     S.interrupted = e;  // passes through Lua as an error, then ends the script as itself
     throw;
   }
+}
+
+int l_run(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.run");
+  const std::int64_t steps = lua::integer(L, 1, "pbf.run: the number of steps");
+  guarded_run(S, [&] { S.sim.run(steps); });
+  return 0;
+}
+
+int l_run_until(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.run_until");
+  const double time = lua::number(L, 1, "pbf.run_until: the end time (s)");
+  guarded_run(S, [&] { S.sim.run_until(time); });
   return 0;
 }
 
@@ -215,6 +230,7 @@ Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}, std:
       {"thermo", lua::guarded<l_thermo>},
       {"every", lua::guarded<l_every>},
       {"run", lua::guarded<l_run>},
+      {"run_until", lua::guarded<l_run_until>},
       {"step", lua::guarded<l_step>},
       {"time", lua::guarded<l_time>},
       {"count", lua::guarded<l_count>},

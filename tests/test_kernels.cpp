@@ -61,3 +61,19 @@ TEST(Kernels, ZeroOutsideTheSupport) {
   EXPECT_EQ(K.spiky_grad_factor(0), 0);  // no direction at r = 0
   EXPECT_GT(K.poly6(real(0.0099)), 0);
 }
+
+TEST(Kernels, WendlandIntegratesToOneAndItsGradientIsTheDerivative) {
+  for (double h : {0.02, 1.0}) {
+    const Kernels K(h);
+    EXPECT_NEAR(radial_integral(h, [&](double r) { return double(K.wendland(real(r))); }), 1.0, 1e-6) << h;
+    for (double q : {0.1, 0.3, 0.5, 0.8, 0.95}) {
+      const double r = q * h, e = (sizeof(real) == 4 ? 1e-3 : 1e-7) * h;
+      const double derivative = (K.wendland(real(r + e)) - K.wendland(real(r - e))) / (2 * e);
+      EXPECT_NEAR(K.wendland_grad_factor(real(r * r)) * r, derivative,
+                  1e3 * pbf::test::kRounding * std::fabs(derivative))
+          << "r/h = " << q;
+    }
+    EXPECT_EQ(K.wendland(real(h)), 0);
+    EXPECT_EQ(K.wendland_grad_factor(real(h * h)), 0);
+  }
+}

@@ -1,4 +1,7 @@
-// gravity: a constant acceleration added to every velocity, v += g dt.
+// gravity: a constant acceleration. With an integrator that accumulates accelerations (the
+// "acceleration" field, leapfrog) it adds g there in the forces stage, so that the
+// integrator applies it with the right weights; otherwise (PBF, Macklin & Mueller's
+// Algorithm 1) it kicks velocities directly, v += g dt, before the prediction.
 #include "engine/fixes/styles.hpp"
 #include "engine/simulation.hpp"
 
@@ -10,10 +13,25 @@ class Gravity : public Fix {
  public:
   Gravity(const std::string& id, const Params& p) : Fix(id, "gravity"), g_(p.vec3("acceleration")) {}
 
-  std::vector<Stage> stages() const override { return {Stage::external_forces}; }
+  std::vector<Stage> stages() const override { return {Stage::external_forces, Stage::forces}; }
+
+  void forces(Simulation& sim) override {
+    auto& P = sim.particles();
+    const auto accel = P.find("acceleration");
+    if (!accel) return;
+    const real g[3] = {real(g_[0]), real(g_[1]), real(g_[2])};
+    const std::size_t n = P.size();
+    for (int c = 0; c < 3; ++c) {
+      real* a = P.data(*accel, c);
+      const real gc = g[c];
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) a[i] += gc;
+    }
+  }
 
   void external_forces(Simulation& sim) override {
     auto& P = sim.particles();
+    if (P.find("acceleration")) return;  // added in the forces stage instead
     const real dt = real(sim.timestep());
     const real gx = real(g_[0]) * dt, gy = real(g_[1]) * dt, gz = real(g_[2]) * dt;
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();

@@ -22,6 +22,10 @@ void register_dump_vtk(StyleRegistry&);
 void register_dump_image(StyleRegistry&);
 void register_dump_movie(StyleRegistry&);
 void register_restart(StyleRegistry&);
+void register_wcsph(StyleRegistry&);
+void register_sph_viscosity(StyleRegistry&);
+void register_leapfrog(StyleRegistry&);
+void register_cfl(StyleRegistry&);
 
 void register_compute_density(StyleRegistry&);
 void register_compute_density_error(StyleRegistry&);

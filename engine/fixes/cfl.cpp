@@ -1,0 +1,109 @@
+// cfl: time-step control for explicit solvers (WCSPH). At the end of every step (and when a
+// run starts) it sets the next step's size to
+//   dt = min(max_dt, courant h / (c + |v|max), force sqrt(h / |a|max))
+// with h the kernel support radius, c the largest signal speed of the pipeline's fixes (the
+// wcsph sound speed) unless given, |a|max from the integrator's "acceleration" field. With
+// `align` > 0 a step that would pass the next multiple of align (from the fix's start) is
+// shortened to end on it, so frames on that interval land on their times. Thermo's dt
+// column shows the step it chose.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "engine/fixes/styles.hpp"
+#include "engine/io/bytes.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Cfl : public Fix {
+ public:
+  Cfl(const std::string& id, const Params& p)
+      : Fix(id, "cfl"),
+        courant_(p.real("courant")),
+        force_(p.real("force")),
+        max_dt_(p.real("max_dt")),
+        c_(p.real("sound_speed")),
+        align_(p.real("align")) {
+    if (!(courant_ > 0) || !(force_ > 0)) throw Error("'courant' and 'force' must be > 0");
+    if (max_dt_ < 0 || c_ < 0 || align_ < 0) throw Error("'max_dt', 'sound_speed' and 'align' must be >= 0");
+  }
+
+  std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
+
+  void init(Simulation& sim) override {
+    if (!started_) {
+      started_ = true;
+      if (max_dt_ == 0) max_dt_ = sim.timestep();  // the script's step is the upper bound
+      start_ = sim.time();
+    }
+    choose(sim);
+  }
+
+  void end_of_step(Simulation& sim) override { choose(sim); }
+
+  void save_state(ByteWriter& w) const override {
+    w.put<std::uint8_t>(started_);
+    w.put(max_dt_);
+    w.put(start_);
+  }
+  void restore_state(ByteReader& r) override {
+    started_ = r.get<std::uint8_t>() != 0;
+    max_dt_ = r.get<double>();
+    start_ = r.get<double>();
+  }
+
+ private:
+  void choose(Simulation& sim) {
+    const auto& P = sim.particles();
+    const std::size_t n = P.size();
+    double c = c_;
+    if (c == 0)
+      for (const auto& f : sim.fixes()) c = std::max(c, f->signal_speed());
+    double v2 = 0, a2 = 0;
+    const auto accel = P.find("acceleration");
+#pragma omp parallel for schedule(static) reduction(max : v2, a2)
+    for (std::size_t i = 0; i < n; ++i) {
+      v2 = std::max(v2, double(P.vx()[i]) * P.vx()[i] + double(P.vy()[i]) * P.vy()[i] + double(P.vz()[i]) * P.vz()[i]);
+      if (accel) {
+        const double ax = P.data(*accel, 0)[i], ay = P.data(*accel, 1)[i], az = P.data(*accel, 2)[i];
+        a2 = std::max(a2, ax * ax + ay * ay + az * az);
+      }
+    }
+    const double h = sim.kernel_radius();
+    double dt = max_dt_;
+    if (c + std::sqrt(v2) > 0) dt = std::min(dt, courant_ * h / (c + std::sqrt(v2)));
+    if (a2 > 0) dt = std::min(dt, force_ * std::sqrt(h / std::sqrt(a2)));
+    if (align_ > 0) {
+      // The next multiple of align after now; a remainder far below a step counts as reached.
+      const double elapsed = sim.time() - start_;
+      double next = std::ceil(elapsed / align_) * align_;
+      if (next - elapsed < 1e-6 * dt) next += align_;
+      dt = std::min(dt, next - elapsed);
+    }
+    if (dt != sim.timestep()) sim.set_timestep(dt);
+  }
+
+  double courant_, force_, max_dt_, c_, align_;
+  bool started_ = false;
+  double start_ = 0;
+};
+
+}  // namespace
+
+void register_cfl(StyleRegistry& r) {
+  r.add({"cfl",
+         StyleKind::fix,
+         "time-step control: dt = min(max_dt, courant h/(c + |v|max), force sqrt(h/|a|max)), chosen every step",
+         {{"courant", ParamType::Real, 0.15, "", "Courant number on h / (c + |v|max), h the support radius"},
+          {"force", ParamType::Real, 0.15, "", "factor of the force criterion sqrt(h / |a|max)"},
+          {"max_dt", ParamType::Real, 0.0, "s", "largest step (0: the time step the script set)"},
+          {"sound_speed", ParamType::Real, 0.0, "m/s", "c (0: the largest signal speed of the fixes, wcsph's c0)"},
+          {"align", ParamType::Real, 0.0, "s", "end steps on multiples of this interval (0: no alignment)"}},
+         [](const std::string& id, const Params& p) { return std::make_unique<Cfl>(id, p); }, nullptr});
+}
+
+}  // namespace pbf

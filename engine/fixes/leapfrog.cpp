@@ -1,0 +1,73 @@
+// leapfrog: the kick-drift-kick integrator of weakly compressible SPH.
+//   predict:          v += dt/2 a_n;  x += dt v;  a = 0     (a_n: the last step's acceleration)
+//   forces stage:     the force styles add a_{n+1} at the new positions
+//   velocity_update:  v += dt/2 a_{n+1}
+// The acceleration is a declared field ("acceleration", saved in restarts): it is the state
+// one step hands to the next. The first step has no a_n: it drifts with v_0 and kicks by the
+// whole dt at its end.
+#include "engine/fixes/styles.hpp"
+#include "engine/io/bytes.hpp"
+#include "engine/simulation.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Leapfrog : public Fix {
+ public:
+  Leapfrog(const std::string& id, const Params&) : Fix(id, "leapfrog") {}
+
+  std::vector<Stage> stages() const override { return {Stage::predict, Stage::velocity_update}; }
+
+  void init(Simulation& sim) override {
+    accel_ = sim.particles().declare(
+        {"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
+    fields_ = {"acceleration"};
+  }
+
+  void predict(Simulation& sim) override {
+    auto& P = sim.particles();
+    const std::size_t n = P.size();
+    const real dt = real(sim.timestep()), half = started_ ? dt / 2 : 0;
+    real* x[3] = {P.x(), P.y(), P.z()};
+    real* v[3] = {P.vx(), P.vy(), P.vz()};
+    for (int c = 0; c < 3; ++c) {
+      real *xc = x[c], *vc = v[c], *ac = P.data(accel_, c);
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        vc[i] += half * ac[i];
+        xc[i] += dt * vc[i];
+        ac[i] = 0;
+      }
+    }
+  }
+
+  void velocity_update(Simulation& sim) override {
+    auto& P = sim.particles();
+    const std::size_t n = P.size();
+    const real dt = real(sim.timestep()), kick = started_ ? dt / 2 : dt;
+    real* v[3] = {P.vx(), P.vy(), P.vz()};
+    for (int c = 0; c < 3; ++c) {
+      real *vc = v[c], *ac = P.data(accel_, c);
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) vc[i] += kick * ac[i];
+    }
+    started_ = true;
+  }
+
+  void save_state(ByteWriter& w) const override { w.put<std::uint8_t>(started_); }
+  void restore_state(ByteReader& r) override { started_ = r.get<std::uint8_t>() != 0; }
+
+ private:
+  FieldId accel_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace
+
+void register_leapfrog(StyleRegistry& r) {
+  r.add({"leapfrog", StyleKind::fix, "kick-drift-kick time integration of the accelerations the forces stage adds (WCSPH)",
+         {}, [](const std::string& id, const Params& p) { return std::make_unique<Leapfrog>(id, p); }, nullptr});
+}
+
+}  // namespace pbf

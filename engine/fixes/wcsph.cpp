@@ -1,0 +1,185 @@
+// wcsph: the pressure of weakly compressible SPH (Monaghan 1994; Becker & Teschner 2007),
+// in the forces stage after the neighbour search:
+//   density     summation: rho_i = sum_j m_j W_poly6(x_ij) + walls (the density every style
+//               and compute of the engine uses, and the one the mass rule sets to rho0), or
+//               continuity: rho_i += dt sum_j m_j (v_i - v_j) . gradW_ij
+//   pressure    tait:   p = B ((rho/rho0)^gamma - 1),  B = rho0 c0^2 / gamma
+//               linear: p = c0^2 (rho - rho0)
+//               negative pressures (a stretched free surface) clamped to 0 unless kept
+//   force       a_i += -sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij   (Wendland C2)
+//               a_i += -2 p_i/rho_i^2 grad(rho_wall)_i                  (walls as mirrored fluid)
+// The accelerations go to the integrator's "acceleration" field (leapfrog). A density more
+// than max_density_error above rho0 (or, integrated by continuity, away from it either way)
+// stops the run: the time step is too large for c0.
+#include <cmath>
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "engine/fixes/styles.hpp"
+#include "engine/io/bytes.hpp"
+#include "engine/simulation.hpp"
+#include "engine/sound_speed.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Wcsph : public Fix {
+ public:
+  Wcsph(const std::string& id, const Params& p)
+      : Fix(id, "wcsph"),
+        eos_(p.string("eos")),
+        density_(p.string("density")),
+        gamma_(p.real("gamma")),
+        c0_(p.real("sound_speed")),
+        gravity_(p.real("gravity")),
+        keep_negative_(p.boolean("negative_pressure")),
+        max_error_(p.real("max_density_error")) {
+    if (eos_ != "tait" && eos_ != "linear")
+      throw Error(fmt::format("parameter 'eos' must be \"tait\" or \"linear\", got \"{}\"", eos_));
+    if (density_ != "summation" && density_ != "continuity")
+      throw Error(fmt::format("parameter 'density' must be \"summation\" or \"continuity\", got \"{}\"", density_));
+    if (!(gamma_ >= 1)) throw Error("parameter 'gamma' must be >= 1");
+    if (c0_ < 0) throw Error("parameter 'sound_speed' must be >= 0 (0: 10 sqrt(2 g H))");
+    if (!(max_error_ > 0)) throw Error("parameter 'max_density_error' must be > 0");
+  }
+
+  std::vector<Stage> stages() const override { return {Stage::forces}; }
+  Role role() const override { return Role::solver; }
+  bool needs_neighbors() const override { return true; }
+
+  void init(Simulation& sim) override {
+    auto& P = sim.particles();
+    const bool continuity = density_ == "continuity";
+    const bool fresh = !P.find("density");
+    rho_ = P.declare({"density", 1, "SPH density (kg/m^3)", continuity});
+    pressure_ = P.declare({"pressure", 1, "pressure from the equation of state (Pa)", false});
+    accel_ = P.declare({"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
+    fields_ = {"density", "pressure", "acceleration"};
+    if (c0_ == 0) c0_ = default_sound_speed(sim, gravity_);  // once: a restart keeps it
+    if (continuity && fresh) {  // the continuity equation starts from the summed density
+      sim.refresh_neighbors();
+      const auto& rho = sim.density();
+      std::copy(rho.begin(), rho.end(), P.data(rho_));
+    }
+  }
+
+  double signal_speed() const override { return c0_; }
+
+  void forces(Simulation& sim) override {
+    auto& P = sim.particles();
+    const auto& grid = sim.neighbors();
+    const Kernels& K = sim.kernels();
+    const std::size_t n = P.size();
+    const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    real *rho = P.data(rho_), *p = P.data(pressure_);
+    real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
+    const real dt = real(sim.timestep()), rho0 = real(sim.rest_density());
+
+    if (density_ == "summation") {
+      const auto& summed = sim.density();
+      std::copy(summed.begin(), summed.end(), rho);
+    } else {
+      drho_.resize(n);
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        real sum = 0;
+        const std::uint32_t* nb = grid.neighbors(i);
+        for (std::uint32_t k = 0; k < grid.count(i); ++k) {
+          const std::uint32_t j = nb[k];
+          const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+          const real g = K.wendland_grad_factor(dx * dx + dy * dy + dz * dz);
+          sum += m[j] * g * ((vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy + (vz[i] - vz[j]) * dz);
+        }
+        drho_[i] = sum;
+      }
+      for (std::size_t i = 0; i < n; ++i) rho[i] += dt * drho_[i];
+    }
+    check_density(sim, rho);
+
+    const real c2 = real(c0_ * c0_), b = real(sim.rest_density() * c0_ * c0_ / gamma_), gamma = real(gamma_);
+    const bool tait = eos_ == "tait", clamp = !keep_negative_;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      real pi = tait ? b * (std::pow(rho[i] / rho0, gamma) - 1) : c2 * (rho[i] - rho0);
+      p[i] = clamp && pi < 0 ? 0 : pi;
+    }
+
+    const auto& walls = sim.density_boundaries();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const real pi = p[i] / (rho[i] * rho[i]);
+      real a[3] = {0, 0, 0};
+      const std::uint32_t* nb = grid.neighbors(i);
+      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
+        const std::uint32_t j = nb[k];
+        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+        const real s = -m[j] * (pi + p[j] / (rho[j] * rho[j])) * K.wendland_grad_factor(dx * dx + dy * dy + dz * dz);
+        a[0] += s * dx;
+        a[1] += s * dy;
+        a[2] += s * dz;
+      }
+      if (!walls.empty() && pi != 0) {  // the walls as fluid mirrored at the same pressure
+        real wall_rho = 0, grad[3] = {0, 0, 0};
+        for (const DensityBoundary* w : walls) w->add_density(sim, x[i], y[i], z[i], wall_rho, grad);
+        for (int c = 0; c < 3; ++c) a[c] -= 2 * pi * grad[c];
+      }
+      ax[i] += a[0];
+      ay[i] += a[1];
+      az[i] += a[2];
+    }
+  }
+
+  void save_state(ByteWriter& w) const override { w.put(c0_); }
+  void restore_state(ByteReader& r) override { c0_ = r.get<double>(); }
+
+ private:
+  // The weakly compressible assumption broken: stop before the pressure explodes.
+  void check_density(const Simulation& sim, const real* rho) const {
+    const std::size_t n = sim.particles().size();
+    const double rho0 = sim.rest_density();
+    std::size_t worst = n;
+    double largest = max_error_;
+    // A summed density is legitimately low at a free surface and in spray (few neighbours):
+    // only compression counts there.
+    const bool summation = density_ == "summation";
+    for (std::size_t i = 0; i < n; ++i) {
+      const double error = summation ? rho[i] / rho0 - 1 : std::fabs(rho[i] / rho0 - 1);
+      if (!(error <= largest)) worst = i, largest = std::isnan(error) ? INFINITY : error;
+    }
+    if (worst == n) return;
+    const double h = sim.kernel_radius();
+    throw Error(fmt::format(
+        "particle {} has density {} kg/m^3, rho/rho0 - 1 = {:.3g} (limit {}): the fluid is no longer weakly "
+        "compressible; the time step {} s is too large for the sound speed {:.4g} m/s (CFL: dt <= 0.15 h / c0 = "
+        "{:.3g} s; fix 'cfl' chooses it)",
+        sim.particles().ids()[worst], rho[worst], rho[worst] / rho0 - 1, max_error_, sim.timestep(), c0_,
+        0.15 * h / c0_));
+  }
+
+  std::string eos_, density_;
+  double gamma_, c0_, gravity_;
+  bool keep_negative_;
+  double max_error_;
+  FieldId rho_ = 0, pressure_ = 0, accel_ = 0;
+  std::vector<real> drho_;
+};
+
+}  // namespace
+
+void register_wcsph(StyleRegistry& r) {
+  r.add({"wcsph",
+         StyleKind::fix,
+         "weakly compressible SPH pressure: density, equation of state, pressure acceleration (with leapfrog)",
+         {{"eos", ParamType::String, std::string("tait"), "", "equation of state: \"tait\" or \"linear\""},
+          {"gamma", ParamType::Real, 7.0, "", "Tait exponent"},
+          {"sound_speed", ParamType::Real, 0.0, "m/s", "c0; 0: 10 sqrt(2 g H), H the fluid's initial height"},
+          {"gravity", ParamType::Real, 9.81, "m/s^2", "g in the default sound speed"},
+          {"density", ParamType::String, std::string("summation"), "",
+           "\"summation\" (SPH sum, walls included) or \"continuity\" (integrated from the velocity divergence)"},
+          {"negative_pressure", ParamType::Bool, false, "", "keep negative pressures (false: clamp them to 0)"},
+          {"max_density_error", ParamType::Real, 0.5, "", "stop the run when rho/rho0 - 1 exceeds this (continuity: |rho/rho0 - 1|)"}},
+         [](const std::string& id, const Params& p) { return std::make_unique<Wcsph>(id, p); }, nullptr});
+}
+
+}  // namespace pbf

@@ -1,0 +1,18 @@
+-- solvers.lua: the weakly compressible SPH pipeline the scenarios share when run with
+-- -v solver=wcsph (their PBF pipelines differ by scenario and stay in them):
+--   leapfrog (kick-drift-kick), wcsph (summed density, Tait pressure, pressure force),
+--   sph_viscosity (Monaghan's artificial viscosity), cfl (time-step control)
+-- Gravity and walls are the scenario's, as for PBF. Options, each nil for the style's
+-- default: alpha, eos, density, sound_speed, courant, align (s: steps end on multiples of
+-- it), fixed_dt (true: no cfl; the script's time step is used as it is).
+local solvers = {}
+
+function solvers.wcsph(opts)
+  opts = opts or {}
+  pbf.fix("integrator", "leapfrog", {})
+  pbf.fix("wcsph", "wcsph", {eos = opts.eos, density = opts.density, sound_speed = opts.sound_speed})
+  pbf.fix("viscosity", "sph_viscosity", {alpha = opts.alpha, sound_speed = opts.sound_speed})
+  if not opts.fixed_dt then pbf.fix("cfl", "cfl", {courant = opts.courant, align = opts.align}) end
+end
+
+return solvers
