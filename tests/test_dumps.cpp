@@ -28,26 +28,7 @@ const std::string kScene =
     "pbf.fix('pbf', 'pbf', {}); pbf.fix('walls', 'box', {})\n"
     "pbf.fix('vort', 'vorticity', {})\n";
 
-// A text frame: rows of numbers after the count line (and a '#' header if any).
-std::vector<std::vector<double>> read_text_frame(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::vector<std::vector<double>> rows;
-  bool counted = false;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (!counted) {
-      counted = true;
-      continue;
-    }
-    std::istringstream s(line);
-    std::vector<double> row;
-    double v;
-    while (s >> v) row.push_back(v);
-    rows.push_back(row);
-  }
-  return rows;
-}
+using pbf::test::read_frame_rows;
 
 TEST(DumpVtk, FramesHoldTheParticlesValuesAndThePvdTheirTimes) {
   const auto dir = temp_dir("vtk");
@@ -60,7 +41,7 @@ TEST(DumpVtk, FramesHoldTheParticlesValuesAndThePvdTheirTimes) {
   auto r = run_engine("run " + (dir / "a.lua").string() + " -v dir=" + dir.string());
   ASSERT_EQ(r.code, 0) << r.output;
   for (int frame = 0; frame < 3; ++frame) {
-    const auto text = read_text_frame(dir / "txt" / fmt::format("frame_{:05d}.txt", frame));
+    const auto text = read_frame_rows(dir / "txt" / fmt::format("frame_{:05d}.txt", frame));
     const ParticleTable vtu = read_vtu((dir / "vtk" / fmt::format("frame_{:05d}.vtu", frame)).string());
     ASSERT_EQ(vtu.count, 125u);
     ASSERT_EQ(text.size(), 125u);
@@ -214,7 +195,7 @@ TEST(ReadParticles, AVtkFrameOrACsvStartsANewRun) {
                  (dir / "f_00001.vtu").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const ParticleTable frame = read_vtu((dir / "f_00001.vtu").string());
-  const auto rows = read_text_frame(dir / "t_00000.txt");
+  const auto rows = read_frame_rows(dir / "t_00000.txt");
   ASSERT_EQ(rows.size(), 125u);
   for (std::size_t i = 0; i < 125; ++i)
     for (int c = 0; c < 3; ++c) {

@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 
 #include "engine/real.hpp"
@@ -45,6 +46,28 @@ inline std::filesystem::path temp_dir(const std::string& name) {
 }
 
 inline void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+// The rows of numbers of a text frame (dump/text): '#' lines skipped, then the count line,
+// then one row per particle.
+inline std::vector<std::vector<double>> read_frame_rows(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::vector<double>> rows;
+  bool counted = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (!counted) {
+      counted = true;
+      continue;
+    }
+    std::istringstream s(line);
+    std::vector<double> row;
+    double v;
+    while (s >> v) row.push_back(v);
+    rows.push_back(row);
+  }
+  return rows;
+}
 
 inline std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

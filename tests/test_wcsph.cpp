@@ -35,25 +35,7 @@ const std::string kColumn =
     "require('solvers').wcsph{fixed_dt = var.fixed_dt}\n"
     "pbf.fix('walls', 'box', {})\n";
 
-std::vector<std::vector<double>> numbers(const std::filesystem::path& path, bool skip_count = true) {
-  std::ifstream in(path);
-  std::string line;
-  std::vector<std::vector<double>> rows;
-  bool first = skip_count;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (first) {
-      first = false;
-      continue;
-    }
-    std::istringstream s(line);
-    std::vector<double> row;
-    double v;
-    while (s >> v) row.push_back(v);
-    rows.push_back(row);
-  }
-  return rows;
-}
+using pbf::test::read_frame_rows;
 
 // A thermo CSV as columns by name.
 std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& path) {
@@ -91,7 +73,7 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
   for (int f = 0;; ++f) {
     const auto path = dir / fmt::format("p_{:05d}.txt", f);
     if (!std::filesystem::exists(path)) break;
-    const auto rows = numbers(path);
+    const auto rows = read_frame_rows(path);
     ASSERT_EQ(rows.size(), 2000u) << "a particle was lost";
     double frame_top = 0;
     for (const auto& row : rows) {
@@ -193,7 +175,7 @@ TEST(Wcsph, ATimeStepFarTooLargeIsStoppedBeforeGarbageFrames) {
   for (int f = 0;; ++f) {
     const auto path = dir / fmt::format("f_{:05d}.txt", f);
     if (!std::filesystem::exists(path)) break;
-    for (const auto& row : numbers(path))
+    for (const auto& row : read_frame_rows(path))
       for (double v : row) ASSERT_TRUE(std::isfinite(v)) << path;
     ++frames;
   }
