@@ -58,7 +58,7 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
   const auto dir = temp_dir("wcsph-column");
   // 0.6 s for the initial transient (the column settles from zero pressure, and the
   // acoustic waves it starts, period 4H/c0 = 0.04 s, are damped by the artificial
-  // viscosity), then pressures averaged over 21 frames in 0.4 s.
+  // viscosity), then pressures averaged over the frames of 0.4 s, one every 0.02 s.
   write_file(dir / "a.lua", kColumn + "pbf.run_until(0.6)\n"
                                       "pbf.fix('p', 'dump/text', {path = var.dir .. '/p_*.txt', interval = 0.02,\n"
                                       "  fields = {'position', 'pressure'}})\npbf.run_until(1.0)\n");
@@ -87,12 +87,12 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
     top += frame_top;
     ++frames;
   }
-  ASSERT_EQ(frames, 21);
+  ASSERT_GE(frames, 20);  // 21 unless the last falls just after 1.0 s (frames count from the dump's start)
   const double surface = top / frames + s / 2, scale = rho0 * g * surface;
   // Bound: 8% of the floor pressure. Measured: at most 5%. The SPH pressure gradient with
   // a support of two spacings is not exact (the lattice sum of x gradW is 0.97 of the
   // identity, and the layers are not a lattice after the transient), so the column settles
-  // with a somewhat steeper pressure gradient than rho0 g; averaging 21 frames leaves about
+  // with a somewhat steeper pressure gradient than rho0 g; averaging 20 frames leaves about
   // 1% of acoustic noise.
   int checked = 0;
   for (int layer = 0; layer < 30; ++layer) {
@@ -148,14 +148,12 @@ TEST(Wcsph, CflStepNeverExceedsItsBound) {
   // (the lattice's z extent plus one spacing is H), max_dt the script's time step.
   const double h = 0.02, c0 = 10 * std::sqrt(2 * 9.81 * 0.2), max_dt = 0.4 * h / std::sqrt(2 * 9.81 * 0.2);
   ASSERT_EQ(csv.at("dt").size(), 401u);
-  bool below = false;
   for (std::size_t k = 0; k < csv.at("dt").size(); ++k) {
     const double bound = std::min(max_dt, 0.15 * h / (c0 + csv.at("v.max")[k]));
-    EXPECT_LE(csv.at("dt")[k], bound * (1 + 1e-12)) << "step " << csv.at("step")[k];
-    below = below || csv.at("dt")[k] < bound * (1 - 1e-6);  // the force criterion acts too
+    // Within rounding: the engine measures H from positions in the data's precision.
+    EXPECT_LE(csv.at("dt")[k], bound * (1 + pbf::test::kRounding)) << "step " << csv.at("step")[k];
   }
   EXPECT_LT(csv.at("dt")[200], 0.2 * max_dt);
-  (void)below;
 }
 
 TEST(Wcsph, ATimeStepFarTooLargeIsStoppedBeforeGarbageFrames) {
