@@ -10,6 +10,11 @@
 #include <map>
 #include <sstream>
 
+#include <random>
+
+#include "engine/lattice.hpp"
+#include "engine/simulation.hpp"
+#include "engine/style_registry.hpp"
 #include "test_util.hpp"
 
 using pbf::test::read_file;
@@ -197,6 +202,53 @@ TEST(Wcsph, RestartContinuesExactly) {
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
   EXPECT_TRUE(read_file(dir / "straight") == read_file(dir / "continued"));
+}
+
+}  // namespace
+
+namespace {
+
+// A block of 512 particles with random velocities in empty space, only viscosity acting:
+// the pairwise forces conserve momentum to rounding, and kinetic energy only falls.
+TEST(Wcsph, ViscositiesConserveMomentumAndDissipateEnergy) {
+  for (const char* kind : {"artificial", "laplacian"}) {
+    pbf::Simulation sim;
+    pbf::Domain d;
+    for (int a = 0; a < 3; ++a) d.lo[a] = -1, d.hi[a] = 1;
+    sim.set_domain(d);
+    sim.set_kernel_radius(0.02);
+    sim.set_timestep(1e-4);
+    const double lo[3] = {-0.04, -0.04, -0.04}, hi[3] = {0.04, 0.04, 0.04}, v0[3] = {0, 0, 0};
+    pbf::add_lattice(sim, lo, hi, 0.01, v0);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    auto& P = sim.particles();
+    for (std::size_t i = 0; i < P.size(); ++i) P.vx()[i] = u(rng), P.vy()[i] = u(rng), P.vz()[i] = u(rng);
+    const auto& styles = pbf::StyleRegistry::builtin();
+    sim.add_fix(styles.make_fix("integrator", "leapfrog", {}));
+    sim.add_fix(styles.make_fix("viscosity", "sph_viscosity",
+                                {{"kind", std::string(kind)}, {"nu", 1e-3}, {"alpha", 0.5}, {"sound_speed", 10.0}}));
+    auto momentum_energy = [&](double out[4]) {
+      out[0] = out[1] = out[2] = out[3] = 0;
+      for (std::size_t i = 0; i < P.size(); ++i) {
+        const double m = P.mass()[i], v[3] = {P.vx()[i], P.vy()[i], P.vz()[i]};
+        for (int c = 0; c < 3; ++c) out[c] += m * v[c];
+        out[3] += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      }
+    };
+    double before[4], after[4];
+    momentum_energy(before);
+    double energy = before[3];
+    for (int k = 0; k < 10; ++k) {
+      sim.run(5);
+      momentum_energy(after);
+      EXPECT_LT(after[3], energy) << kind << ": kinetic energy rose";
+      energy = after[3];
+    }
+    const double scale = std::sqrt(2 * before[3] * 512 * P.mass()[0]);  // |p| of one random walk
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[c], before[c], 100 * pbf::test::kRounding * scale) << kind;
+    EXPECT_LT(after[3], 0.99 * before[3]) << kind << ": no dissipation";
+  }
 }
 
 }  // namespace

@@ -3,8 +3,9 @@
 //   artificial (Monaghan 1992): a_i += -sum_j m_j Pi_ij gradW_ij,
 //       Pi_ij = -alpha c0 h mu_ij / rho_ij  where v_ij . x_ij < 0 (approaching), else 0,
 //       mu_ij = v_ij . x_ij / (|x_ij|^2 + 0.01 h^2),  rho_ij = (rho_i + rho_j) / 2
-//   laplacian (Morris et al. 1997), kinematic viscosity nu:
-//       a_i += sum_j 2 nu (m_j / rho_j) v_ij (x_ij . gradW_ij) / (|x_ij|^2 + 0.01 h^2)
+//   laplacian (Morris et al. 1997), kinematic viscosity nu, in the form symmetric in i and j
+//   (so momentum is conserved; 2 nu m_j / rho_j when the densities are equal):
+//       a_i += sum_j nu m_j (1/rho_i + 1/rho_j) v_ij (x_ij . gradW_ij) / (|x_ij|^2 + 0.01 h^2)
 // Wendland C2 gradients, as the pressure force.
 #include <fmt/format.h>
 
@@ -52,7 +53,7 @@ class SphViscosity : public Fix {
     const real* rho = field ? P.data(*field) : sim.density().data();
     const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
-    const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * c0_) * h, two_nu = real(2 * nu_);
+    const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * c0_) * h, nu = real(nu_);
     const bool artificial = artificial_;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -72,7 +73,7 @@ class SphViscosity : public Fix {
           const real s = -m[j] * pi_ij * g;
           a[0] += s * dx, a[1] += s * dy, a[2] += s * dz;
         } else {
-          const real s = two_nu * m[j] / rho[j] * g * r2 / (r2 + eta2);
+          const real s = nu * m[j] * (1 / rho[i] + 1 / rho[j]) * g * r2 / (r2 + eta2);
           a[0] += s * ux, a[1] += s * uy, a[2] += s * uz;
         }
       }

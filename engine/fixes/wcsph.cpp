@@ -9,8 +9,7 @@
 //   force       a_i += -sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij   (Wendland C2)
 //               a_i += -2 p_i/rho_i^2 grad(rho_wall)_i                  (walls as mirrored fluid)
 // The accelerations go to the integrator's "acceleration" field (leapfrog). A density more
-// than max_density_error above rho0 (or, integrated by continuity, away from it either way)
-// stops the run: the time step is too large for c0.
+// than max_density_error above rho0 stops the run: the time step is too large for c0.
 #include <cmath>
 #include <fmt/format.h>
 
@@ -57,10 +56,9 @@ class Wcsph : public Fix {
     accel_ = P.declare({"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
     fields_ = {"density", "pressure", "acceleration"};
     if (c0_ == 0) c0_ = default_sound_speed(sim, gravity_);  // once: a restart keeps it
-    if (continuity && fresh) {  // the continuity equation starts from the summed density
-      sim.refresh_neighbors();
-      const auto& rho = sim.density();
-      std::copy(rho.begin(), rho.end(), P.data(rho_));
+    if (continuity && fresh) {  // the continuity equation starts from rest density (p = 0)
+      real* rho = P.data(rho_);
+      std::fill(rho, rho + P.size(), real(sim.rest_density()));
     }
   }
 
@@ -140,11 +138,10 @@ class Wcsph : public Fix {
     const double rho0 = sim.rest_density();
     std::size_t worst = n;
     double largest = max_error_;
-    // A summed density is legitimately low at a free surface and in spray (few neighbours):
-    // only compression counts there.
-    const bool summation = density_ == "summation";
+    // Density is legitimately low at a free surface and in spray (few neighbours, or, by
+    // continuity, a neighbourhood spreading out): only compression counts.
     for (std::size_t i = 0; i < n; ++i) {
-      const double error = summation ? rho[i] / rho0 - 1 : std::fabs(rho[i] / rho0 - 1);
+      const double error = rho[i] / rho0 - 1;
       if (!(error <= largest)) worst = i, largest = std::isnan(error) ? INFINITY : error;
     }
     if (worst == n) return;
@@ -178,7 +175,7 @@ void register_wcsph(StyleRegistry& r) {
           {"density", ParamType::String, std::string("summation"), "",
            "\"summation\" (SPH sum, walls included) or \"continuity\" (integrated from the velocity divergence)"},
           {"negative_pressure", ParamType::Bool, false, "", "keep negative pressures (false: clamp them to 0)"},
-          {"max_density_error", ParamType::Real, 0.5, "", "stop the run when rho/rho0 - 1 exceeds this (continuity: |rho/rho0 - 1|)"}},
+          {"max_density_error", ParamType::Real, 0.5, "", "stop the run when rho/rho0 - 1 exceeds this (compression; spray may be less dense)"}},
          [](const std::string& id, const Params& p) { return std::make_unique<Wcsph>(id, p); }, nullptr});
 }
 
