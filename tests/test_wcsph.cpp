@@ -252,3 +252,40 @@ TEST(Wcsph, ViscositiesConserveMomentumAndDissipateEnergy) {
 }
 
 }  // namespace
+
+namespace {
+
+// The original study's scene file run by WCSPH: the file's time step is an upper bound, the
+// CFL control takes smaller steps, and steps end exactly on the output interval, so frame k
+// is the state at k times the interval.
+TEST(Wcsph, SceneFileRunsWithSubStepsAndFramesOnTheInterval) {
+  if (std::string(PBF_PYTHON).empty()) GTEST_SKIP() << "no python3";
+  const auto dir = temp_dir("wcsph-init");
+  const std::string scene = (dir / "dambreak.txt").string();
+  const std::string make = std::string(PBF_PYTHON) + " " + PBF_SOURCE_DIR + "/share/make_scene.py --kind dambreak " +
+                           "--particles 2000 --interval 0.02 --t-final 0.1 -o " + scene + " 2>&1";
+  ASSERT_EQ(std::system(make.c_str()), 0);
+  // Record every step's time, then check the interval's multiples are among them.
+  write_file(dir / "wrap.lua",
+             "local times = {}\nlocal run_until = pbf.run_until\n"
+             "pbf.run_until = function(t)\n"
+             "  pbf.every('clock', 1, function(step, time) times[#times + 1] = time end)\n"
+             "  run_until(t)\n"
+             "  local hit = 0\n"
+             "  for k = 1, 5 do for _, time in ipairs(times) do\n"
+             "    if math.abs(time - 0.02 * k) < 1e-12 then hit = hit + 1; break end end end\n"
+             "  print(string.format('STEPS %d HIT %d', #times, hit))\nend\n"
+             "dofile(var.scenario)\n");
+  auto r = run_engine("run " + (dir / "wrap.lua").string() + " -v scenario=" + scenario("init_file.lua") +
+                      " -v init=" + scene + " -v out=" + (dir / "frames").string() + " -v solver=wcsph");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("HIT 5"), std::string::npos) << r.output;
+  const auto at = r.output.find("STEPS ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_GT(std::stoi(r.output.substr(at + 6)), 50 * 2) << "no sub-steps below the file's dt = 0.002 s";
+  for (int k = 0; k <= 5; ++k)
+    EXPECT_TRUE(std::filesystem::exists(dir / "frames" / fmt::format("frame_{:05d}.txt", k))) << k;
+  EXPECT_FALSE(std::filesystem::exists(dir / "frames" / "frame_00006.txt"));
+}
+
+}  // namespace
