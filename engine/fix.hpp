@@ -38,6 +38,9 @@ class Fix {
   // The fastest signal this fix's physics carries (a weakly compressible solver's sound
   // speed, m/s; 0: none): time-step control keeps dt below h over it.
   virtual double signal_speed() const { return 0; }
+  // Whether this fix moves particles by integrating the "acceleration" field (leapfrog):
+  // force styles need one, and a position-based solver must not run beside one.
+  virtual bool integrates_accelerations() const { return false; }
   // Walls that add to the density the solver sees (nullptr: none).
   virtual DensityBoundary* density_boundary() { return nullptr; }
 

@@ -86,6 +86,15 @@ std::string StyleRegistry::help(const std::string& style) const {
   return out;
 }
 
+namespace {
+// A table cell: a '|' in the text (|v|, |a|) would end the cell.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+}  // namespace
+
 std::string StyleRegistry::markdown_reference() const {
   std::string out;
   for (StyleKind kind : {StyleKind::fix, StyleKind::compute}) {
@@ -102,7 +111,7 @@ std::string StyleRegistry::markdown_reference() const {
         out += fmt::format("| `{}` | {} | {} | {} | {} |\n", p.name, type_name(p.type),
                            p.default_value ? fmt::format("`{}`", format_value(*p.default_value))
                            : std::string(p.optional ? "optional" : "required"),
-                           p.unit.empty() ? "-" : p.unit, p.doc);
+                           p.unit.empty() ? "-" : p.unit, cell(p.doc));
     }
   }
   return out;

@@ -60,7 +60,7 @@ end
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if solver == "wcsph" then
-  require("solvers").wcsph{alpha = var.alpha, eos = var.eos, fixed_dt = var.fixed_dt}
+  require("solvers").wcsph{alpha = var.alpha, eos = var.eos, density = var.density, fixed_dt = var.fixed_dt}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
   pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
@@ -87,6 +87,6 @@ pbf.thermo{every = math.max(1, math.floor(0.01 / dt_typical)),
                                                      or out .. "/thermo.csv") or nil),
            columns = {"step", "time", "dt", "front", "err.avg", "err.max", "ke"}}
 
-print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %.4g s, to t = %g s", solver,
-                    pbf.count(), a, pbf.kernel_radius(), dt, t_end))
+print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %s%.4g s, to t = %g s", solver,
+                    pbf.count(), a, pbf.kernel_radius(), solver == "wcsph" and "<= " or "", dt, t_end))
 pbf.run_until(t_end)

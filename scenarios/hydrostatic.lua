@@ -31,7 +31,7 @@ pbf.lattice{lo = {0, 0, 0}, hi = {W, W, H}, spacing = s}
 
 pbf.fix("gravity", "gravity", {})
 if (var.solver or "pbf") == "wcsph" then
-  require("solvers").wcsph{alpha = var.alpha, fixed_dt = var.fixed_dt}
+  require("solvers").wcsph{alpha = var.alpha, density = var.density, fixed_dt = var.fixed_dt}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
@@ -44,7 +44,9 @@ pbf.compute("ke", "kinetic_energy")
 pbf.compute("v", "speed")
 pbf.compute("top", "front", {axis = "z", percentile = 99})
 pbf.compute("box", "extent")
-pbf.thermo{every = math.max(1, math.floor(0.1 / dt)), csv = var.csv,
+-- WCSPH steps are set by the sound speed c0 = 10 sqrt(2 g H) (fix cfl), not by dt above
+local dt_typical = (var.solver or "pbf") == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * 9.81 * H)) or dt
+pbf.thermo{every = math.max(1, math.floor(0.1 / dt_typical)), csv = var.csv,
            columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.avg", "v.max", "top", "box.zmin"}}
 
 print(string.format("hydrostatic: %d particles, spacing %.4g m, h %.4g m, dt %.4g s", pbf.count(), s, h, dt))

@@ -13,12 +13,16 @@ class Gravity : public Fix {
  public:
   Gravity(const std::string& id, const Params& p) : Fix(id, "gravity"), g_(p.vec3("acceleration")) {}
 
-  std::vector<Stage> stages() const override { return {Stage::external_forces, Stage::forces}; }
+  // Decided when the run starts: the integrators (solver role) have declared their field by
+  // then, and the run loop asks for stages after every fix's init.
+  void init(Simulation& sim) override { into_accelerations_ = sim.particles().find("acceleration").has_value(); }
+  std::vector<Stage> stages() const override {
+    return {into_accelerations_ ? Stage::forces : Stage::external_forces};
+  }
 
   void forces(Simulation& sim) override {
     auto& P = sim.particles();
     const auto accel = P.find("acceleration");
-    if (!accel) return;
     const real g[3] = {real(g_[0]), real(g_[1]), real(g_[2])};
     const std::size_t n = P.size();
     for (int c = 0; c < 3; ++c) {
@@ -31,7 +35,6 @@ class Gravity : public Fix {
 
   void external_forces(Simulation& sim) override {
     auto& P = sim.particles();
-    if (P.find("acceleration")) return;  // added in the forces stage instead
     const real dt = real(sim.timestep());
     const real gx = real(g_[0]) * dt, gy = real(g_[1]) * dt, gz = real(g_[2]) * dt;
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
@@ -46,6 +49,7 @@ class Gravity : public Fix {
 
  private:
   Vec3 g_;
+  bool into_accelerations_ = false;
 };
 
 }  // namespace

@@ -18,6 +18,9 @@ class Leapfrog : public Fix {
   Leapfrog(const std::string& id, const Params&) : Fix(id, "leapfrog") {}
 
   std::vector<Stage> stages() const override { return {Stage::predict, Stage::velocity_update}; }
+  // Before the walls in velocity_update, and initialised first, so that gravity sees the field.
+  Role role() const override { return Role::solver; }
+  bool integrates_accelerations() const override { return true; }
 
   void init(Simulation& sim) override {
     accel_ = sim.particles().declare(

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/accelerations.hpp"
 #include "engine/error.hpp"
 #include "engine/fixes/styles.hpp"
 #include "engine/mass.hpp"
@@ -47,6 +48,7 @@ class PositionBasedFluid : public Fix {
   bool needs_neighbors() const override { return true; }
 
   void init(Simulation& sim) override {
+    forbid_integrator(sim, "pbf");
     auto& P = sim.particles();
     lambda_ = P.declare({"lambda", 1, "PBF constraint multiplier lambda (m^2)", false});
     fields_ = {"lambda"};

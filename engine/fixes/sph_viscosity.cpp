@@ -9,6 +9,7 @@
 // Wendland C2 gradients, as the pressure force.
 #include <fmt/format.h>
 
+#include "engine/accelerations.hpp"
 #include "engine/error.hpp"
 #include "engine/fixes/styles.hpp"
 #include "engine/io/bytes.hpp"
@@ -37,6 +38,7 @@ class SphViscosity : public Fix {
   bool needs_neighbors() const override { return true; }
 
   void init(Simulation& sim) override {
+    require_integrator(sim, "sph_viscosity");
     auto& P = sim.particles();
     accel_ = P.declare({"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
     fields_ = {"acceleration"};

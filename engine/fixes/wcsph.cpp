@@ -13,6 +13,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "engine/accelerations.hpp"
 #include "engine/error.hpp"
 #include "engine/fixes/styles.hpp"
 #include "engine/io/bytes.hpp"
@@ -48,6 +49,7 @@ class Wcsph : public Fix {
   bool needs_neighbors() const override { return true; }
 
   void init(Simulation& sim) override {
+    require_integrator(sim, "wcsph");
     auto& P = sim.particles();
     const bool continuity = density_ == "continuity";
     const bool fresh = !P.find("density");
@@ -74,6 +76,7 @@ class Wcsph : public Fix {
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     const real dt = real(sim.timestep()), rho0 = real(sim.rest_density());
 
+    const auto& walls = sim.density_boundaries();
     if (density_ == "summation") {
       const auto& summed = sim.density();
       std::copy(summed.begin(), summed.end(), rho);
@@ -89,7 +92,11 @@ class Wcsph : public Fix {
           const real g = K.wendland_grad_factor(dx * dx + dy * dy + dz * dz);
           sum += m[j] * g * ((vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy + (vz[i] - vz[j]) * dz);
         }
-        drho_[i] = sum;
+        // Walls as mirrored fluid: the mirror image moves with the normal velocity reversed,
+        // so approaching a wall raises the density by 2 v . grad(rho_wall).
+        real wall_rho = 0, grad[3] = {0, 0, 0};
+        for (const DensityBoundary* w : walls) w->add_density(sim, x[i], y[i], z[i], wall_rho, grad);
+        drho_[i] = sum + 2 * (vx[i] * grad[0] + vy[i] * grad[1] + vz[i] * grad[2]);
       }
       for (std::size_t i = 0; i < n; ++i) rho[i] += dt * drho_[i];
     }
@@ -103,7 +110,6 @@ class Wcsph : public Fix {
       p[i] = clamp && pi < 0 ? 0 : pi;
     }
 
-    const auto& walls = sim.density_boundaries();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const real pi = p[i] / (rho[i] * rho[i]);

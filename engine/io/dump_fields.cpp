@@ -34,7 +34,8 @@ std::vector<std::string> DumpFields::valid_names(const Simulation& sim) {
   std::vector<std::string> names;
   const auto& P = sim.particles();
   for (FieldId f = 0; f < P.field_count(); ++f) names.push_back(P.spec(f).name);
-  for (const auto& d : kDerived) names.emplace_back(d.name);
+  for (const auto& d : kDerived)
+    if (!P.find(d.name)) names.emplace_back(d.name);  // a declared field of that name wins
   return names;
 }
 
@@ -42,10 +43,10 @@ void DumpFields::resolve(const Simulation& sim) {
   const auto& P = sim.particles();
   components_.clear();
   for (const auto& name : names_) {
-    if (derived(name)) {
-      components_.push_back(1);
-    } else if (auto f = P.find(name)) {
+    if (auto f = P.find(name)) {  // a field a fix keeps (wcsph's density) before a derived one
       components_.push_back(P.spec(*f).components);
+    } else if (derived(name)) {
+      components_.push_back(1);
     } else {
       std::string valid;
       for (const auto& v : valid_names(sim)) valid += (valid.empty() ? "" : ", ") + v;
@@ -69,7 +70,9 @@ void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) 
   const int nc = components_[k];
   // One value per particle in memory order first, then reordered by id below.
   std::vector<const real*> columns;
-  if (name == "density" || name == "density_error") {
+  if (const auto f = P.find(name)) {
+    for (int c = 0; c < nc; ++c) columns.push_back(P.data(*f, c));
+  } else if (name == "density" || name == "density_error") {
     sim.refresh_neighbors();
     const std::vector<real>& rho = sim.density();
     scratch_.resize(n);
@@ -90,9 +93,6 @@ void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) 
     columns = {scratch_.data()};
   } else if (name == "id") {
     throw Error("internal: the id field is gathered with gather_ids");
-  } else {
-    const FieldId f = *P.find(name);
-    for (int c = 0; c < nc; ++c) columns.push_back(P.data(f, c));
   }
   const std::vector<std::uint32_t> index = P.index_of_id();
   out.resize(n * static_cast<std::size_t>(nc));

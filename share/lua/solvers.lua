@@ -12,7 +12,8 @@ function solvers.wcsph(opts)
   pbf.fix("integrator", "leapfrog", {})
   pbf.fix("wcsph", "wcsph", {eos = opts.eos, density = opts.density, sound_speed = opts.sound_speed})
   pbf.fix("viscosity", "sph_viscosity", {alpha = opts.alpha, sound_speed = opts.sound_speed})
-  if not opts.fixed_dt then pbf.fix("cfl", "cfl", {courant = opts.courant, align = opts.align}) end
+  local fixed = opts.fixed_dt ~= nil and opts.fixed_dt ~= false and opts.fixed_dt ~= 0 and opts.fixed_dt ~= "false"
+  if not fixed then pbf.fix("cfl", "cfl", {courant = opts.courant, align = opts.align}) end
 end
 
 return solvers
