@@ -7,14 +7,13 @@
 //   (so momentum is conserved; 2 nu m_j / rho_j when the densities are equal):
 //       a_i += sum_j nu m_j (1/rho_i + 1/rho_j) v_ij (x_ij . gradW_ij) / (|x_ij|^2 + 0.01 h^2)
 // Wendland C2 gradients, as the pressure force.
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "engine/accelerations.hpp"
 #include "engine/error.hpp"
 #include "engine/fixes/styles.hpp"
-#include "engine/io/bytes.hpp"
 #include "engine/simulation.hpp"
-#include "engine/sound_speed.hpp"
 
 namespace pbf {
 
@@ -27,8 +26,7 @@ class SphViscosity : public Fix {
         artificial_(p.string("kind") == "artificial"),
         alpha_(p.real("alpha")),
         nu_(p.real("nu")),
-        c0_(p.real("sound_speed")),
-        gravity_(p.real("gravity")) {
+        c0_(p.real("sound_speed")) {
     if (p.string("kind") != "artificial" && p.string("kind") != "laplacian")
       throw Error(fmt::format("parameter 'kind' must be \"artificial\" or \"laplacian\", got \"{}\"", p.string("kind")));
     if (alpha_ < 0 || nu_ < 0 || c0_ < 0) throw Error("'alpha', 'nu' and 'sound_speed' must be >= 0");
@@ -42,7 +40,8 @@ class SphViscosity : public Fix {
     auto& P = sim.particles();
     accel_ = P.declare({"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
     fields_ = {"acceleration"};
-    if (artificial_ && c0_ == 0) c0_ = default_sound_speed(sim, gravity_);
+    if (artificial_ && sound_speed(sim) == 0)
+      throw Error("the artificial viscosity needs a sound speed: set 'sound_speed' or add a wcsph fix");
   }
 
   void forces(Simulation& sim) override {
@@ -55,7 +54,7 @@ class SphViscosity : public Fix {
     const real* rho = field ? P.data(*field) : sim.density().data();
     const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
-    const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * c0_) * h, nu = real(nu_);
+    const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * sound_speed(sim)) * h, nu = real(nu_);
     const bool artificial = artificial_;
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -85,12 +84,17 @@ class SphViscosity : public Fix {
     }
   }
 
-  void save_state(ByteWriter& w) const override { w.put(c0_); }
-  void restore_state(ByteReader& r) override { c0_ = r.get<double>(); }
-
  private:
+  // c0: the parameter, or the largest signal speed of the pipeline (wcsph's sound speed).
+  double sound_speed(const Simulation& sim) const {
+    double c = c0_;
+    if (c == 0)
+      for (const auto& f : sim.fixes()) c = std::max(c, f->signal_speed());
+    return c;
+  }
+
   bool artificial_;
-  double alpha_, nu_, c0_, gravity_;
+  double alpha_, nu_, c0_;
   FieldId accel_ = 0;
 };
 
@@ -103,8 +107,7 @@ void register_sph_viscosity(StyleRegistry& r) {
          {{"kind", ParamType::String, std::string("artificial"), "", "\"artificial\" (Monaghan) or \"laplacian\" (Morris)"},
           {"alpha", ParamType::Real, 0.1, "", "artificial viscosity coefficient (with h the support radius)"},
           {"nu", ParamType::Real, 1e-6, "m^2/s", "kinematic viscosity of the Laplacian form (water: 1e-6)"},
-          {"sound_speed", ParamType::Real, 0.0, "m/s", "c0 of the artificial form; 0: 10 sqrt(2 g H) as wcsph"},
-          {"gravity", ParamType::Real, 9.81, "m/s^2", "g in the default sound speed"}},
+          {"sound_speed", ParamType::Real, 0.0, "m/s", "c0 of the artificial form; 0: the wcsph fix's sound speed"}},
          [](const std::string& id, const Params& p) { return std::make_unique<SphViscosity>(id, p); }, nullptr});
 }
 

@@ -11,7 +11,7 @@ function solvers.wcsph(opts)
   opts = opts or {}
   pbf.fix("integrator", "leapfrog", {})
   pbf.fix("wcsph", "wcsph", {eos = opts.eos, density = opts.density, sound_speed = opts.sound_speed})
-  pbf.fix("viscosity", "sph_viscosity", {alpha = opts.alpha, sound_speed = opts.sound_speed})
+  pbf.fix("viscosity", "sph_viscosity", {alpha = opts.alpha})
   local fixed = opts.fixed_dt ~= nil and opts.fixed_dt ~= false and opts.fixed_dt ~= 0 and opts.fixed_dt ~= "false"
   if not fixed then pbf.fix("cfl", "cfl", {courant = opts.courant, align = opts.align}) end
 end
