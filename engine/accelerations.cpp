@@ -15,6 +15,8 @@ const Fix* integrator(const Simulation& sim) {
 }
 }  // namespace
 
+bool has_integrator(const Simulation& sim) { return integrator(sim) != nullptr; }
+
 void require_integrator(const Simulation& sim, const std::string& who) {
   if (!integrator(sim))
     throw Error(fmt::format("{} adds accelerations, but no fix integrates them: add pbf.fix(\"integrator\", "

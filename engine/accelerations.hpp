@@ -7,6 +7,8 @@ namespace pbf {
 
 class Simulation;
 
+// Whether some fix of the pipeline integrates accelerations.
+bool has_integrator(const Simulation& sim);
 // Throws unless some fix integrates accelerations (`who` names the caller in the error).
 void require_integrator(const Simulation& sim, const std::string& who);
 // Throws if some fix integrates accelerations.

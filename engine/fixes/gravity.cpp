@@ -2,6 +2,7 @@
 // "acceleration" field, leapfrog) it adds g there in the forces stage, so that the
 // integrator applies it with the right weights; otherwise (PBF, Macklin & Mueller's
 // Algorithm 1) it kicks velocities directly, v += g dt, before the prediction.
+#include "engine/accelerations.hpp"
 #include "engine/fixes/styles.hpp"
 #include "engine/simulation.hpp"
 
@@ -13,16 +14,16 @@ class Gravity : public Fix {
  public:
   Gravity(const std::string& id, const Params& p) : Fix(id, "gravity"), g_(p.vec3("acceleration")) {}
 
-  // Decided when the run starts: the integrators (solver role) have declared their field by
-  // then, and the run loop asks for stages after every fix's init.
-  void init(Simulation& sim) override { into_accelerations_ = sim.particles().find("acceleration").has_value(); }
+  // Decided when the run starts (the run loop asks for stages after every fix's init), from
+  // the pipeline: a field left by a restart of another solver does not count.
+  void init(Simulation& sim) override { into_accelerations_ = has_integrator(sim); }
   std::vector<Stage> stages() const override {
     return {into_accelerations_ ? Stage::forces : Stage::external_forces};
   }
 
   void forces(Simulation& sim) override {
     auto& P = sim.particles();
-    const auto accel = P.find("acceleration");
+    const auto accel = P.find("acceleration");  // declared by the integrator's init
     const real g[3] = {real(g_[0]), real(g_[1]), real(g_[2])};
     const std::size_t n = P.size();
     for (int c = 0; c < 3; ++c) {
