@@ -156,7 +156,7 @@ TEST(Restart, DamagedFilesAreClearErrors) {
   EXPECT_THROW(read_restart(sim, (dir / "missing.restart").string()), Error);
 }
 
-TEST(Restart, ReadingAPrecisionNameAndUnwritablePath) {
+TEST(Restart, WritingIntoAMissingDirectoryIsAnError) {
   const auto dir = temp_dir("restart-path");
   Simulation sim;
   sim.set_kernel_radius(0.02);
@@ -169,7 +169,8 @@ TEST(Restart, ReadingAPrecisionNameAndUnwritablePath) {
   }
 }
 
-// Lines 1-6: a scene with a restart fix every 2 steps and a frame dump.
+// Lines 1-6: the scene (or, with -v restart, a restart of it), gravity, pbf, walls and a
+// restart fix every 2 steps.
 const std::string kScene =
     "if var.restart then pbf.read_restart(var.restart) else\n"
     "pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}; pbf.kernel_radius(0.02); pbf.timestep(0.001)\n"
