@@ -42,6 +42,12 @@ const std::string kColumn =
 
 using pbf::test::read_frame_rows;
 
+// Runs the column (kColumn) followed by `rest` of a script in `dir`, with -v extra variables.
+pbf::test::Result run_column(const std::filesystem::path& dir, const std::string& rest, const std::string& vars = "") {
+  write_file(dir / "a.lua", kColumn + rest);
+  return run_engine("run " + (dir / "a.lua").string() + " -v share=" + kShare + " -v dir=" + dir.string() + vars);
+}
+
 // A thermo CSV as columns by name.
 std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -64,10 +70,9 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
   // 0.6 s for the initial transient (the column settles from zero pressure, and the
   // acoustic waves it starts, period 4H/c0 = 0.04 s, are damped by the artificial
   // viscosity), then pressures averaged over the frames of 0.4 s, one every 0.02 s.
-  write_file(dir / "a.lua", kColumn + "pbf.run_until(0.6)\n"
-                                      "pbf.fix('p', 'dump/text', {path = var.dir .. '/p_*.txt', interval = 0.02,\n"
-                                      "  fields = {'position', 'pressure'}})\npbf.run_until(1.0)\n");
-  auto r = run_engine("run " + (dir / "a.lua").string() + " -v share=" + kShare + " -v dir=" + dir.string());
+  auto r = run_column(dir, "pbf.run_until(0.6)\n"
+                           "pbf.fix('p', 'dump/text', {path = var.dir .. '/p_*.txt', interval = 0.02,\n"
+                           "  fields = {'position', 'pressure'}})\npbf.run_until(1.0)\n");
   ASSERT_EQ(r.code, 0) << r.output;
   const double H = 0.2, s = 0.01, h = 0.02, rho0 = 1000, g = 9.81;
   // Layers 1 cm thick; pressure against depth below the free surface, which lies half a
@@ -143,10 +148,9 @@ TEST(Wcsph, DamBreakFrontFollowsThePbfRunUntilTEquals2) {
 
 TEST(Wcsph, CflStepNeverExceedsItsBound) {
   const auto dir = temp_dir("wcsph-cfl");
-  write_file(dir / "a.lua", kColumn + "pbf.compute('v', 'speed')\n"
-                                      "pbf.thermo{every = 1, csv = var.dir .. '/t.csv', columns = {'step', 'dt', "
-                                      "'v.max'}}\npbf.run(400)\n");
-  auto r = run_engine("run " + (dir / "a.lua").string() + " -v share=" + kShare + " -v dir=" + dir.string());
+  auto r = run_column(dir, "pbf.compute('v', 'speed')\n"
+                           "pbf.thermo{every = 1, csv = var.dir .. '/t.csv', columns = {'step', 'dt', "
+                           "'v.max'}}\npbf.run(400)\n");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto csv = read_csv(dir / "t.csv");
   // The bound it claims: min(max_dt, 0.15 h / (c0 + |v|max), ...), c0 = 10 sqrt(2 g H)
@@ -164,9 +168,8 @@ TEST(Wcsph, CflStepNeverExceedsItsBound) {
 TEST(Wcsph, ATimeStepFarTooLargeIsStoppedBeforeGarbageFrames) {
   const auto dir = temp_dir("wcsph-dt");
   // 40 times the CFL step, fixed.
-  write_file(dir / "a.lua", kColumn + "pbf.fix('f', 'dump/text', {path = var.dir .. '/f_*.txt', every = 1})\n"
-                                      "pbf.run(1000)\n");
-  auto r = run_engine("run " + (dir / "a.lua").string() + " -v share=" + kShare + " -v dir=" + dir.string() +
+  auto r = run_column(dir, "pbf.fix('f', 'dump/text', {path = var.dir .. '/f_*.txt', every = 1})\n"
+                           "pbf.run(1000)\n",
                       " -v fixed_dt=true -v dt=0.006");
   EXPECT_EQ(r.code, 1);
   const bool clear = r.output.find("the fluid is no longer weakly compressible; the time step 0.006 s is too large") !=
@@ -297,10 +300,9 @@ namespace {
 // spacings of its height.
 TEST(Wcsph, ContinuityDensityKeepsAColumnAtRest) {
   const auto dir = temp_dir("wcsph-continuity");
-  write_file(dir / "a.lua", kColumn + "pbf.compute('v', 'speed')\npbf.compute('top', 'front', {axis = 'z', "
-                                      "percentile = 99})\npbf.thermo{every = 500, csv = var.dir .. '/t.csv', "
-                                      "columns = {'time', 'v.avg', 'top'}}\npbf.run_until(0.5)\n");
-  auto r = run_engine("run " + (dir / "a.lua").string() + " -v share=" + kShare + " -v dir=" + dir.string() +
+  auto r = run_column(dir, "pbf.compute('v', 'speed')\npbf.compute('top', 'front', {axis = 'z', "
+                           "percentile = 99})\npbf.thermo{every = 500, csv = var.dir .. '/t.csv', "
+                           "columns = {'time', 'v.avg', 'top'}}\npbf.run_until(0.5)\n",
                       " -v density=continuity");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto csv = read_csv(dir / "t.csv");
