@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "engine/lattice.hpp"
-#include "engine/simulation.hpp"
-#include "engine/style_registry.hpp"
+#include "engine/sph/lattice.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/registry/style_registry.hpp"
 
 using namespace pbf;
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "engine/error.hpp"
-#include "engine/io/image_renderer.hpp"
+#include "engine/core/error.hpp"
+#include "engine/render/image_renderer.hpp"
 #include "test_util.hpp"
 
 using pbf::Domain;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "engine/kernels.hpp"
+#include "engine/sph/kernels.hpp"
 #include "test_util.hpp"
 
 using pbf::Kernels;

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "engine/neighbor_grid.hpp"
+#include "engine/sph/neighbor_grid.hpp"
 
 using namespace pbf;
 

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "engine/error.hpp"
-#include "engine/style_registry.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/style_registry.hpp"
 
 using namespace pbf;
 

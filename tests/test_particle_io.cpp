@@ -11,7 +11,7 @@
 #include <limits>
 #include <sys/resource.h>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 #include "engine/io/csv.hpp"
 #include "engine/io/particle_input.hpp"
 #include "engine/io/vtu.hpp"

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <random>
 
-#include "engine/error.hpp"
-#include "engine/lattice.hpp"
-#include "engine/simulation.hpp"
-#include "engine/style_registry.hpp"
+#include "engine/core/error.hpp"
+#include "engine/sph/lattice.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/registry/style_registry.hpp"
 #include "test_util.hpp"
 
 using namespace pbf;

@@ -8,11 +8,11 @@
 #include <fmt/format.h>
 #include <zlib.h>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 #include "engine/io/restart.hpp"
-#include "engine/lattice.hpp"
-#include "engine/simulation.hpp"
-#include "engine/style_registry.hpp"
+#include "engine/sph/lattice.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/registry/style_registry.hpp"
 #include "test_util.hpp"
 
 using namespace pbf;

@@ -2,9 +2,9 @@
 // case is refused with FILE:LINE.
 #include <gtest/gtest.h>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 #include "engine/io/scene_file.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/simulation.hpp"
 #include "test_util.hpp"
 
 using namespace pbf;

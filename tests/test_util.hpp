@@ -10,7 +10,7 @@
 #include <vector>
 #include <sys/wait.h>
 
-#include "engine/real.hpp"
+#include "engine/core/real.hpp"
 
 namespace pbf::test {
 

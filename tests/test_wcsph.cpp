@@ -12,9 +12,9 @@
 
 #include <random>
 
-#include "engine/lattice.hpp"
-#include "engine/simulation.hpp"
-#include "engine/style_registry.hpp"
+#include "engine/sph/lattice.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/registry/style_registry.hpp"
 #include "test_util.hpp"
 
 using pbf::test::read_file;
@@ -324,7 +324,15 @@ TEST(Wcsph, PipelinesThatCannotWorkAreErrors) {
   write_file(dir / "b.lua", scene + "pbf.fix('i', 'leapfrog', {})\npbf.fix('p', 'pbf', {})\npbf.run(1)\n");
   r = run_engine("run " + (dir / "b.lua").string());
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.output.find("pbf moves particles itself and cannot run beside fix 'i' (leapfrog)"), std::string::npos)
+  EXPECT_NE(r.output.find(":4: fix 'p' (pbf): fix 'i' (leapfrog) does the time integration already"),
+            std::string::npos)
+      << r.output;
+  write_file(dir / "c.lua", scene + "pbf.fix('p', 'pbf', {})\npbf.fix('w', 'wcsph', {})\npbf.run(1)\n");
+  r = run_engine("run " + (dir / "c.lua").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(":5: fix 'w' (wcsph): wcsph adds accelerations, but no fix integrates them (fix 'p' (pbf) "
+                          "moves positions itself"),
+            std::string::npos)
       << r.output;
 }
 

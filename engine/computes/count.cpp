@@ -1,6 +1,6 @@
 // count: the number of particles.
-#include "engine/fixes/styles.hpp"
-#include "engine/simulation.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

@@ -1,7 +1,7 @@
 // density: the SPH density of every particle (kg/m^3), walls included, as the solver
 // sees it.
-#include "engine/fixes/styles.hpp"
-#include "engine/simulation.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

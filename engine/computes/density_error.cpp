@@ -2,9 +2,9 @@
 // average compression, the mean of max(rho/rho0 - 1, 0) (what a one-sided solver removes).
 #include <algorithm>
 
-#include "engine/fixes/styles.hpp"
-#include "engine/parallel.hpp"
-#include "engine/simulation.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/parallel.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

@@ -1,7 +1,7 @@
 // kinetic_energy: the total kinetic energy, sum 1/2 m |v|^2 (J).
-#include "engine/fixes/styles.hpp"
-#include "engine/parallel.hpp"
-#include "engine/simulation.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/parallel.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/fixes/styles.hpp"
-#include "engine/parallel.hpp"
-#include "engine/simulation.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/parallel.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

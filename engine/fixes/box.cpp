@@ -17,12 +17,11 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/density_boundary.hpp"
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/mass.hpp"
-#include "engine/parallel.hpp"
-#include "engine/simulation.hpp"
+#include "engine/sph/density_boundary.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/sph/mass.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -44,6 +43,7 @@ class Box : public Fix, public DensityBoundary {
     return {Stage::constraints, Stage::velocity_update};
   }
   Role role() const override { return Role::boundary; }
+  const char* exclusive_job() const override { return "walls at the domain faces"; }
   DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
 
   // Only with restitution: the velocity each particle arrives with (within a step only).
@@ -96,7 +96,7 @@ class Box : public Fix, public DensityBoundary {
   void prepare(const Simulation& sim) override {
     const auto& P = sim.particles();
     if (P.size() == 0) return;
-    const double mass = deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) / double(P.size());
+    const double mass = P.mean_mass();
     if (mass == prepared_[0] && sim.kernel_radius() == prepared_[1] && sim.rest_density() == prepared_[2]) return;
     prepared_[0] = mass;
     prepared_[1] = sim.kernel_radius();

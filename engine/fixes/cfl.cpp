@@ -10,10 +10,10 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -33,6 +33,7 @@ class Cfl : public Fix {
   }
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
+  const char* exclusive_job() const override { return "time-step control"; }
 
   void init(Simulation& sim) override {
     if (!started_) {
@@ -60,9 +61,7 @@ class Cfl : public Fix {
   void choose(Simulation& sim) {
     const auto& P = sim.particles();
     const std::size_t n = P.size();
-    double c = c_;
-    if (c == 0)
-      for (const auto& f : sim.fixes()) c = std::max(c, f->signal_speed());
+    const double c = c_ > 0 ? c_ : sim.max_signal_speed();
     double v2 = 0, a2 = 0;
     const auto accel = P.find("acceleration");
 #pragma omp parallel for schedule(static) reduction(max : v2, a2)

@@ -2,9 +2,9 @@
 // LAMMPS's dump image does: shaded spheres coloured by a field, a labelled colour bar, the
 // domain's edges, the simulated time. Rendering is parallel; its cost is this fix's line of
 // the timing table.
-#include "engine/fixes/styles.hpp"
-#include "engine/io/dump.hpp"
-#include "engine/io/particle_images.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/output/dump.hpp"
+#include "engine/render/particle_images.hpp"
 
 namespace pbf {
 

@@ -12,13 +12,13 @@
 #include <spdlog/spdlog.h>
 #include <sys/wait.h>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
-#include "engine/io/path_pattern.hpp"
-#include "engine/io/particle_images.hpp"
-#include "engine/output_schedule.hpp"
-#include "engine/simulation.hpp"
+#include "engine/output/path_pattern.hpp"
+#include "engine/render/particle_images.hpp"
+#include "engine/output/output_schedule.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

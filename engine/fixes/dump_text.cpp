@@ -6,10 +6,10 @@
 #include <fmt/format.h>
 #include <omp.h>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/io/dump.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/output/dump.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

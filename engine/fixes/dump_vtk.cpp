@@ -5,12 +5,12 @@
 #include <filesystem>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
-#include "engine/io/dump.hpp"
+#include "engine/output/dump.hpp"
 #include "engine/io/vtu.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

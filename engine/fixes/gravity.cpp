@@ -2,9 +2,8 @@
 // "acceleration" field, leapfrog) it adds g there in the forces stage, so that the
 // integrator applies it with the right weights; otherwise (PBF, Macklin & Mueller's
 // Algorithm 1) it kicks velocities directly, v += g dt, before the prediction.
-#include "engine/accelerations.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/simulation.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -16,7 +15,10 @@ class Gravity : public Fix {
 
   // Decided when the run starts (the run loop asks for stages after every fix's init), from
   // the pipeline: a field left by a restart of another solver does not count.
-  void init(Simulation& sim) override { into_accelerations_ = has_integrator(sim); }
+  void init(Simulation& sim) override {
+    const Fix* integrator = sim.integrator();
+    into_accelerations_ = integrator && integrator->integration() == Integration::accelerations;
+  }
   std::vector<Stage> stages() const override {
     return {into_accelerations_ ? Stage::forces : Stage::external_forces};
   }

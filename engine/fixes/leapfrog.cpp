@@ -5,9 +5,9 @@
 // The acceleration is a declared field ("acceleration", saved in restarts): it is the state
 // one step hands to the next. The first step has no a_n: it drifts with v_0 and kicks by the
 // whole dt at its end.
-#include "engine/fixes/styles.hpp"
+#include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -20,13 +20,10 @@ class Leapfrog : public Fix {
   std::vector<Stage> stages() const override { return {Stage::predict, Stage::velocity_update}; }
   // Before the walls in velocity_update, and initialised first, so that gravity sees the field.
   Role role() const override { return Role::solver; }
-  bool integrates_accelerations() const override { return true; }
+  Integration integration() const override { return Integration::accelerations; }
+  const char* exclusive_job() const override { return "time integration"; }
 
-  void init(Simulation& sim) override {
-    accel_ = sim.particles().declare(
-        {"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
-    fields_ = {"acceleration"};
-  }
+  void init(Simulation& sim) override { accel_ = sim.particles().declare(kAccelerationField); }
 
   void predict(Simulation& sim) override {
     auto& P = sim.particles();

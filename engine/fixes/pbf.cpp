@@ -12,12 +12,10 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/accelerations.hpp"
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/mass.hpp"
-#include "engine/parallel.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/sph/mass.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -46,15 +44,13 @@ class PositionBasedFluid : public Fix {
   Role role() const override { return Role::solver; }
   int constraint_iterations() const override { return iterations_; }
   bool needs_neighbors() const override { return true; }
+  Integration integration() const override { return Integration::positions; }
+  const char* exclusive_job() const override { return "time integration"; }
 
   void init(Simulation& sim) override {
-    forbid_integrator(sim, "pbf");
     auto& P = sim.particles();
     lambda_ = P.declare({"lambda", 1, "PBF constraint multiplier lambda (m^2)", false});
-    fields_ = {"lambda"};
-    const double mean_mass =
-        deterministic_sum(P.size(), [&](std::size_t i) { return double(P.mass()[i]); }) / double(P.size());
-    S0_ = lattice_gradient_sum(mean_mass, sim.kernels(), sim.rest_density());
+    S0_ = lattice_gradient_sum(P.mean_mass(), sim.kernels(), sim.rest_density());
     scorr_w_ = sim.kernels().poly6(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
   }
 
@@ -98,18 +94,14 @@ class PositionBasedFluid : public Fix {
       real rho = m[i] * K.poly6(0);
       real gi[3] = {0, 0, 0};
       real sum_sq = 0;
-      const std::uint32_t* nb = grid.neighbors(i);
-      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-        const std::uint32_t j = nb[k];
-        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-        const real r2 = dx * dx + dy * dy + dz * dz;
+      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
         rho += m[j] * K.poly6(r2);
         const real g = m[j] * inv_rho0 * K.spiky_grad_factor(r2);  // grad_j C_i = -g r_ij
         gi[0] += g * dx;
         gi[1] += g * dy;
         gi[2] += g * dz;
         sum_sq += g * g * r2;
-      }
+      });
       real wall_grad[3] = {0, 0, 0};
       for (const DensityBoundary* b : walls) b->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
       for (int c = 0; c < 3; ++c) gi[c] += wall_grad[c] * inv_rho0;
@@ -122,11 +114,7 @@ class PositionBasedFluid : public Fix {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       real d[3] = {0, 0, 0};
-      const std::uint32_t* nb = grid.neighbors(i);
-      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-        const std::uint32_t j = nb[k];
-        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-        const real r2 = dx * dx + dy * dy + dz * dz;
+      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
         real s = 0;
         if (scorr_scale > 0) {
           const real ratio = K.poly6(r2) * inv_wdq;
@@ -138,7 +126,7 @@ class PositionBasedFluid : public Fix {
         d[0] += g * dx;
         d[1] += g * dy;
         d[2] += g * dz;
-      }
+      });
       if (!walls.empty()) {
         // A wall's gradient moves only particle i (the wall has no lambda of its own).
         real rho = 0, wall_grad[3] = {0, 0, 0};

@@ -7,13 +7,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
-#include "engine/io/path_pattern.hpp"
+#include "engine/output/path_pattern.hpp"
 #include "engine/io/restart.hpp"
-#include "engine/output_schedule.hpp"
-#include "engine/simulation.hpp"
+#include "engine/output/output_schedule.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

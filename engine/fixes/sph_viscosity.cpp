@@ -10,10 +10,9 @@
 #include <algorithm>
 #include <fmt/format.h>
 
-#include "engine/accelerations.hpp"
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -34,12 +33,10 @@ class SphViscosity : public Fix {
 
   std::vector<Stage> stages() const override { return {Stage::forces}; }
   bool needs_neighbors() const override { return true; }
+  bool adds_accelerations() const override { return true; }
 
   void init(Simulation& sim) override {
-    require_integrator(sim, "sph_viscosity");
-    auto& P = sim.particles();
-    accel_ = P.declare({"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
-    fields_ = {"acceleration"};
+    accel_ = sim.particles().declare(kAccelerationField);
     if (artificial_ && sound_speed(sim) == 0)
       throw Error("the artificial viscosity needs a sound speed: set 'sound_speed' or add a wcsph fix");
   }
@@ -59,16 +56,12 @@ class SphViscosity : public Fix {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       real a[3] = {0, 0, 0};
-      const std::uint32_t* nb = grid.neighbors(i);
-      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-        const std::uint32_t j = nb[k];
-        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
         const real ux = vx[i] - vx[j], uy = vy[i] - vy[j], uz = vz[i] - vz[j];
-        const real r2 = dx * dx + dy * dy + dz * dz;
         const real g = K.wendland_grad_factor(r2);  // gradW = g x_ij
         if (artificial) {
           const real vr = ux * dx + uy * dy + uz * dz;
-          if (vr >= 0) continue;  // separating: no artificial viscosity
+          if (vr >= 0) return;  // separating: no artificial viscosity
           const real mu = vr / (r2 + eta2);
           const real pi_ij = -alpha_c_h * mu / ((rho[i] + rho[j]) / 2);
           const real s = -m[j] * pi_ij * g;
@@ -77,7 +70,7 @@ class SphViscosity : public Fix {
           const real s = nu * m[j] * (1 / rho[i] + 1 / rho[j]) * g * r2 / (r2 + eta2);
           a[0] += s * ux, a[1] += s * uy, a[2] += s * uz;
         }
-      }
+      });
       ax[i] += a[0];
       ay[i] += a[1];
       az[i] += a[2];
@@ -86,12 +79,7 @@ class SphViscosity : public Fix {
 
  private:
   // c0: the parameter, or the largest signal speed of the pipeline (wcsph's sound speed).
-  double sound_speed(const Simulation& sim) const {
-    double c = c0_;
-    if (c == 0)
-      for (const auto& f : sim.fixes()) c = std::max(c, f->signal_speed());
-    return c;
-  }
+  double sound_speed(const Simulation& sim) const { return c0_ > 0 ? c0_ : sim.max_signal_speed(); }
 
   bool artificial_;
   double alpha_, nu_, c0_;

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/simulation.hpp"
-#include "engine/velocity_curl.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/sph/velocity_curl.hpp"
 
 namespace pbf {
 
@@ -28,7 +28,6 @@ class VorticityConfinement : public Fix {
 
   void init(Simulation& sim) override {
     omega_ = sim.particles().declare({"vorticity", 3, "vorticity, curl of the velocity (1/s)", false});
-    fields_ = {"vorticity"};
   }
 
   void velocity_post(Simulation& sim) override {
@@ -49,15 +48,12 @@ class VorticityConfinement : public Fix {
     for (std::size_t i = 0; i < n; ++i) {
       const real wi = magnitude_[i];
       real eta[3] = {0, 0, 0};
-      const std::uint32_t* nb = grid.neighbors(i);
-      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-        const std::uint32_t j = nb[k];
-        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-        const real g = m[j] / rho[j] * (magnitude_[j] - wi) * K.spiky_grad_factor(dx * dx + dy * dy + dz * dz);
+      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
+        const real g = m[j] / rho[j] * (magnitude_[j] - wi) * K.spiky_grad_factor(r2);
         eta[0] += g * dx;
         eta[1] += g * dy;
         eta[2] += g * dz;
-      }
+      });
       const real len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
       real a[3] = {0, 0, 0};
       if (len > real(1e-12) * (wi / K.h + real(1e-30))) {  // no direction where |omega| is flat

@@ -13,16 +13,26 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "engine/accelerations.hpp"
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
-#include "engine/simulation.hpp"
-#include "engine/sound_speed.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/sph/mass.hpp"
 
 namespace pbf {
 
 namespace {
+
+// The default sound speed, 10 sqrt(2 g H), H the fluid's height when first measured (the z
+// extent of the particles plus one spacing): flow speeds stay below about sqrt(2 g H), so
+// the Mach number stays under 0.1 and the density varies by about 1% (Monaghan 1994).
+double default_sound_speed(const Simulation& sim, double gravity) {
+  const auto& P = sim.particles();
+  double lo = P.z()[0], hi = P.z()[0];
+  for (std::size_t i = 0; i < P.size(); ++i) lo = std::min(lo, double(P.z()[i])), hi = std::max(hi, double(P.z()[i]));
+  const double height = hi - lo + lattice_spacing(P.mean_mass(), sim.kernels(), sim.rest_density());
+  return 10 * std::sqrt(2 * std::fabs(gravity) * height);
+}
 
 class Wcsph : public Fix {
  public:
@@ -47,16 +57,16 @@ class Wcsph : public Fix {
   std::vector<Stage> stages() const override { return {Stage::forces}; }
   Role role() const override { return Role::solver; }
   bool needs_neighbors() const override { return true; }
+  bool adds_accelerations() const override { return true; }
+  const char* exclusive_job() const override { return "pressure solver"; }
 
   void init(Simulation& sim) override {
-    require_integrator(sim, "wcsph");
     auto& P = sim.particles();
     const bool continuity = density_ == "continuity";
     const bool fresh = !P.find("density");
     rho_ = P.declare({"density", 1, "SPH density (kg/m^3)", continuity});
     pressure_ = P.declare({"pressure", 1, "pressure from the equation of state (Pa)", false});
-    accel_ = P.declare({"acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true});
-    fields_ = {"density", "pressure", "acceleration"};
+    accel_ = P.declare(kAccelerationField);
     if (c0_ == 0) c0_ = default_sound_speed(sim, gravity_);  // once: a restart keeps it
     if (continuity && fresh) {  // the continuity equation starts from rest density (p = 0)
       real* rho = P.data(rho_);
@@ -85,13 +95,10 @@ class Wcsph : public Fix {
 #pragma omp parallel for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         real sum = 0;
-        const std::uint32_t* nb = grid.neighbors(i);
-        for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-          const std::uint32_t j = nb[k];
-          const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-          const real g = K.wendland_grad_factor(dx * dx + dy * dy + dz * dz);
+        grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
+          const real g = K.wendland_grad_factor(r2);
           sum += m[j] * g * ((vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy + (vz[i] - vz[j]) * dz);
-        }
+        });
         // Walls as mirrored fluid: the mirror image moves with the normal velocity reversed,
         // so approaching a wall raises the density by 2 v . grad(rho_wall).
         real wall_rho = 0, grad[3] = {0, 0, 0};
@@ -114,15 +121,12 @@ class Wcsph : public Fix {
     for (std::size_t i = 0; i < n; ++i) {
       const real pi = p[i] / (rho[i] * rho[i]);
       real a[3] = {0, 0, 0};
-      const std::uint32_t* nb = grid.neighbors(i);
-      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-        const std::uint32_t j = nb[k];
-        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-        const real s = -m[j] * (pi + p[j] / (rho[j] * rho[j])) * K.wendland_grad_factor(dx * dx + dy * dy + dz * dz);
+      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
+        const real s = -m[j] * (pi + p[j] / (rho[j] * rho[j])) * K.wendland_grad_factor(r2);
         a[0] += s * dx;
         a[1] += s * dy;
         a[2] += s * dz;
-      }
+      });
       if (!walls.empty() && pi != 0) {  // the walls as fluid mirrored at the same pressure
         real wall_rho = 0, grad[3] = {0, 0, 0};
         for (const DensityBoundary* w : walls) w->add_density(sim, x[i], y[i], z[i], wall_rho, grad);

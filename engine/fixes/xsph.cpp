@@ -3,9 +3,9 @@
 //   v_i += c sum_j (m_j / rho_j) (v_j - v_i) W_ij
 #include <vector>
 
-#include "engine/error.hpp"
-#include "engine/fixes/styles.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/error.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -34,15 +34,12 @@ class XsphViscosity : public Fix {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       real d[3] = {0, 0, 0};
-      const std::uint32_t* nb = grid.neighbors(i);
-      for (std::uint32_t k = 0; k < grid.count(i); ++k) {
-        const std::uint32_t j = nb[k];
-        const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-        const real w = m[j] / rho[j] * K.poly6(dx * dx + dy * dy + dz * dz);
+      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) {
+        const real w = m[j] / rho[j] * K.poly6(r2);
         d[0] += w * (vx[j] - vx[i]);
         d[1] += w * (vy[j] - vy[i]);
         d[2] += w * (vz[j] - vz[i]);
-      }
+      });
       dv_[0][i] = c * d[0];
       dv_[1][i] = c * d[1];
       dv_[2][i] = c * d[2];

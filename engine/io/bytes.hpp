@@ -9,7 +9,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 
 namespace pbf {
 

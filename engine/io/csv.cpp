@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 #include <fstream>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 
 namespace pbf {
 

@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 #include "engine/io/particle_input.hpp"
-#include "engine/mass.hpp"
-#include "engine/simulation.hpp"
+#include "engine/sph/mass.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 #include "engine/io/csv.hpp"
 #include "engine/io/vtu.hpp"
 

@@ -12,9 +12,9 @@
 #include <unistd.h>
 #include <zlib.h>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 #include "engine/io/bytes.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 
@@ -46,7 +46,7 @@ std::vector<unsigned char> payload(const Simulation& sim) {
   w.put(n);
   w.put_array(P.ids(), n);
   std::vector<FieldId> saved;
-  for (FieldId f = 0; f < P.field_count(); ++f)
+  for (FieldId f : P.fields())
     if (P.spec(f).restart) saved.push_back(f);
   w.put(static_cast<std::uint32_t>(saved.size()));
   for (FieldId f : saved) {

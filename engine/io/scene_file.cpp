@@ -7,10 +7,10 @@
 #include <spdlog/spdlog.h>
 #include <sstream>
 
-#include "engine/error.hpp"
-#include "engine/mass.hpp"
+#include "engine/core/error.hpp"
+#include "engine/sph/mass.hpp"
 #include "engine/io/load_particles.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/simulation.hpp"
 
 namespace pbf {
 

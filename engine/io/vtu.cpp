@@ -14,7 +14,7 @@
 #include <iterator>
 #include <string_view>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 
 namespace pbf {
 

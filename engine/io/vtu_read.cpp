@@ -16,7 +16,7 @@
 #include <pugixml.hpp>
 #include <string_view>
 
-#include "engine/error.hpp"
+#include "engine/core/error.hpp"
 
 namespace pbf {
 

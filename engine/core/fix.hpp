@@ -1,0 +1,81 @@
+#pragma once
+// A fix is one style instance in the step pipeline (LAMMPS's word): it names the stages
+// it joins and implements a hook for each. The run loop calls and times the hooks; a fix
+// never times itself.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/stage.hpp"
+
+namespace pbf {
+
+class Simulation;
+class DensityBoundary;
+class ByteWriter;
+class ByteReader;
+
+// Order within a stage: the solver first, then other fixes, then boundaries, then outputs,
+// each group in script order. So in each constraint iteration the density correction runs
+// before the wall projection, walls correct velocities after the solver has set them, and
+// dumps and restarts see the finished step. init() follows the same order, so an output
+// finds every field the other fixes declare.
+enum class Role { solver = 0, other = 1, boundary = 2, output = 3 };
+
+// What a fix integrates: nothing, positions directly (pbf: predict, correct, velocities
+// from the displacement), or the "acceleration" field the force styles fill (leapfrog).
+enum class Integration { none, positions, accelerations };
+
+class Fix {
+ public:
+  Fix(std::string id, std::string style) : id_(std::move(id)), style_(std::move(style)) {}
+  virtual ~Fix() = default;
+
+  const std::string& id() const { return id_; }
+  const std::string& style() const { return style_; }
+
+  virtual std::vector<Stage> stages() const = 0;
+  virtual Role role() const { return Role::other; }
+  // How many constraint iterations a step needs (the run takes the largest; at least 1).
+  virtual int constraint_iterations() const { return 0; }
+  virtual bool needs_neighbors() const { return false; }
+  // The fastest signal this fix's physics carries (a weakly compressible solver's sound
+  // speed, m/s; 0: none): time-step control keeps dt below h over it.
+  virtual double signal_speed() const { return 0; }
+  // How this fix moves particles through time, if it does (at most one fix per pipeline).
+  virtual Integration integration() const { return Integration::none; }
+  // Whether this fix adds to the "acceleration" field, which needs an integrator of
+  // accelerations (leapfrog) in the pipeline.
+  virtual bool adds_accelerations() const { return false; }
+  // A job only one fix of a pipeline may do ("time integration", "walls at the domain
+  // faces", ...): a second fix with the same job is refused when it is added. nullptr: none.
+  virtual const char* exclusive_job() const { return nullptr; }
+  // Walls that add to the density the solver sees (nullptr: none).
+  virtual DensityBoundary* density_boundary() { return nullptr; }
+
+  // Start of every run: declare fields (Particles::declare; a field no fix declares in this
+  // round is freed), precompute constants, write initial output.
+  virtual void init(Simulation&) {}
+  virtual void external_forces(Simulation&) {}
+  virtual void predict(Simulation&) {}
+  virtual void forces(Simulation&) {}
+  virtual void constraint(Simulation&, int /*iteration*/) {}
+  virtual void velocity_update(Simulation&) {}
+  virtual void velocity_post(Simulation&) {}
+  virtual void end_of_step(Simulation&) {}
+  // End of every run (flush files).
+  virtual void finish(Simulation&) {}
+
+  // State that shapes the future but is no particle field (frame counters, a value carried
+  // to the next step, a random generator): saved in restarts and handed back, after a read,
+  // to the fix of the same id and style. restore_state must read exactly what save_state wrote.
+  virtual void save_state(ByteWriter&) const {}
+  virtual void restore_state(ByteReader&) {}
+  // A fix that writes restarts writes one now (on Ctrl-C) and returns its path.
+  virtual std::optional<std::string> write_restart_now(Simulation&) { return std::nullopt; }
+
+ private:
+  std::string id_, style_;
+};
+
+}  // namespace pbf

@@ -1,0 +1,119 @@
+#include "engine/core/particles.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
+
+namespace pbf {
+
+Particles::Particles() {
+  declare({"position", 3, "position (m)"});
+  declare({"velocity", 3, "velocity (m/s)"});
+  declare({"mass", 1, "mass (kg)"});
+}
+
+void Particles::add(const real position[3], const real velocity[3], real mass) {
+  for (int c = 0; c < 3; ++c) fields_[kPosition].data[c].push_back(position[c]);
+  for (int c = 0; c < 3; ++c) fields_[kVelocity].data[c].push_back(velocity[c]);
+  fields_[kMass].data[0].push_back(mass);
+  for (std::size_t f = kMass + 1; f < fields_.size(); ++f)
+    for (auto& component : fields_[f].data) component.push_back(0);  // none for a freed field
+  ids_.push_back(static_cast<std::int64_t>(ids_.size()));
+}
+
+void Particles::fill(Field& field) const {
+  field.data.assign(static_cast<std::size_t>(field.spec.components), std::vector<real>(size(), real(0)));
+}
+
+FieldId Particles::declare(const FieldSpec& spec) {
+  for (FieldId f = 0; f < fields_.size(); ++f) {
+    Field& field = fields_[f];
+    if (field.spec.name != spec.name) continue;
+    if (field.live && field.spec.components != spec.components)
+      throw Error(fmt::format("field '{}' declared with {} and {} components", spec.name, field.spec.components,
+                              spec.components));
+    if (!field.live) {  // freed in an earlier round: back in its old slot
+      field.spec = spec;
+      fill(field);
+      field.live = true;
+    } else if (!field.declared) {  // the first declaration this round says what it is
+      field.spec.doc = spec.doc;
+      field.spec.restart = spec.restart;
+    } else {  // several fixes share it: saved if any of them needs it
+      field.spec.restart = field.spec.restart || spec.restart;
+    }
+    field.declared = true;
+    return f;
+  }
+  Field field{spec, {}};
+  fill(field);
+  fields_.push_back(std::move(field));
+  return fields_.size() - 1;
+}
+
+std::optional<FieldId> Particles::find(const std::string& name) const {
+  for (FieldId f = 0; f < fields_.size(); ++f)
+    if (fields_[f].live && fields_[f].spec.name == name) return f;
+  return std::nullopt;
+}
+
+std::vector<FieldId> Particles::fields() const {
+  std::vector<FieldId> live;
+  for (FieldId f = 0; f < fields_.size(); ++f)
+    if (fields_[f].live) live.push_back(f);
+  return live;
+}
+
+void Particles::begin_declarations() {
+  for (FieldId f = kMass + 1; f < fields_.size(); ++f) fields_[f].declared = false;
+}
+
+void Particles::free_undeclared() {
+  for (FieldId f = kMass + 1; f < fields_.size(); ++f) {
+    Field& field = fields_[f];
+    if (field.declared || !field.live) continue;
+    field.live = false;
+    std::vector<std::vector<real>>().swap(field.data);
+  }
+}
+
+double Particles::mean_mass() const {
+  const real* m = mass();
+  return deterministic_sum(size(), [&](std::size_t i) { return double(m[i]); }) / static_cast<double>(size());
+}
+
+void Particles::reset(std::vector<std::int64_t> ids) {
+  std::vector<char> seen(ids.size(), 0);
+  for (std::int64_t id : ids) {
+    if (id < 0 || static_cast<std::uint64_t>(id) >= ids.size() || seen[static_cast<std::size_t>(id)])
+      throw Error(fmt::format("particle ids must be a permutation of 0..{}; found {}", ids.size() - 1, id));
+    seen[static_cast<std::size_t>(id)] = 1;
+  }
+  ids_ = std::move(ids);
+  for (auto& field : fields_)
+    if (field.live) fill(field);
+}
+
+void Particles::permute(const std::vector<std::uint32_t>& order) {
+  std::vector<real> scratch(size());
+  for (auto& field : fields_) {
+    for (auto& component : field.data) {
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < order.size(); ++i) scratch[i] = component[order[i]];
+      component.swap(scratch);
+    }
+  }
+  std::vector<std::int64_t> ids(size());
+  for (std::size_t i = 0; i < order.size(); ++i) ids[i] = ids_[order[i]];
+  ids_.swap(ids);
+}
+
+std::vector<std::uint32_t> Particles::index_of_id() const {
+  std::vector<std::uint32_t> index(size());
+  for (std::size_t i = 0; i < size(); ++i) index[static_cast<std::size_t>(ids_[i])] = static_cast<std::uint32_t>(i);
+  return index;
+}
+
+}  // namespace pbf

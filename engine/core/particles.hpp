@@ -1,0 +1,103 @@
+#pragma once
+// Particle data as structure-of-arrays. Every per-particle array is a declared field
+// (name, components, doc, restart); position, velocity and mass always exist, fixes declare the
+// rest when they join a run. That one declaration lets the engine reorder, dump and
+// save every field without a second list.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/real.hpp"
+
+namespace pbf {
+
+struct FieldSpec {
+  std::string name;
+  int components = 1;
+  std::string doc;
+  // Whether the field carries state into the next step (saved in restarts); false for
+  // values a fix recomputes every step before reading them.
+  bool restart = true;
+};
+
+// A field's id stays the same for as long as the field lives (fields freed later leave
+// their slot empty, they do not move the others), so a fix may keep the ids it declared.
+// The field the force styles add to and an integrator of accelerations (leapfrog)
+// integrates: the state one step hands to the next, so it is saved in restarts.
+inline const FieldSpec kAccelerationField{
+    "acceleration", 3, "acceleration the forces stage accumulates for the integrator (m/s^2)", true};
+
+using FieldId = std::size_t;
+
+class Particles {
+ public:
+  static constexpr FieldId kPosition = 0, kVelocity = 1, kMass = 2;
+
+  Particles();
+
+  std::size_t size() const { return ids_.size(); }
+
+  // Appends one particle; its id is its creation index (the input order).
+  void add(const real position[3], const real velocity[3], real mass);
+
+  // Declares a field, zero-filled when new; the same name (with the same component count)
+  // gives the same id. Declaring marks the field as used in this declaration round.
+  FieldId declare(const FieldSpec& spec);
+  // A live field by name.
+  std::optional<FieldId> find(const std::string& name) const;
+  const FieldSpec& spec(FieldId field) const { return fields_[field].spec; }
+  // The live fields' ids, in the order they were first declared.
+  std::vector<FieldId> fields() const;
+
+  // Declaration rounds, one per run: after begin_declarations(), the fixes' init() declare
+  // what they use, and free_undeclared() frees every other field (position, velocity and
+  // mass always stay), so a scene pays only for the fields its pipeline uses.
+  void begin_declarations();
+  void free_undeclared();
+
+  // The mean particle mass (a deterministic sum: the same bits at any thread count).
+  double mean_mass() const;
+
+  real* data(FieldId field, int component = 0) { return fields_[field].data[component].data(); }
+  const real* data(FieldId field, int component = 0) const { return fields_[field].data[component].data(); }
+
+  real* x() { return data(kPosition, 0); }
+  real* y() { return data(kPosition, 1); }
+  real* z() { return data(kPosition, 2); }
+  real* vx() { return data(kVelocity, 0); }
+  real* vy() { return data(kVelocity, 1); }
+  real* vz() { return data(kVelocity, 2); }
+  real* mass() { return data(kMass); }
+  const real* x() const { return data(kPosition, 0); }
+  const real* y() const { return data(kPosition, 1); }
+  const real* z() const { return data(kPosition, 2); }
+  const real* vx() const { return data(kVelocity, 0); }
+  const real* vy() const { return data(kVelocity, 1); }
+  const real* vz() const { return data(kVelocity, 2); }
+  const real* mass() const { return data(kMass); }
+  const std::int64_t* ids() const { return ids_.data(); }
+
+  // Replaces every particle by `ids.size()` zeroed ones with these ids (a restart fills in
+  // the fields). The ids must be a permutation of 0..n-1.
+  void reset(std::vector<std::int64_t> ids);
+
+  // Reorders every field: particle i of the result is particle order[i] of before.
+  void permute(const std::vector<std::uint32_t>& order);
+  // index_of_id()[k]: the current index of the particle with id k.
+  std::vector<std::uint32_t> index_of_id() const;
+
+ private:
+  struct Field {
+    FieldSpec spec;
+    std::vector<std::vector<real>> data;  // one array per component; empty once freed
+    bool live = true;
+    bool declared = true;  // declared in the current round
+  };
+  void fill(Field& field) const;  // zeroed arrays for every particle
+  std::vector<Field> fields_;
+  std::vector<std::int64_t> ids_;
+};
+
+}  // namespace pbf

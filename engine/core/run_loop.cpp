@@ -1,0 +1,300 @@
+// The run loop: stages in order, fixes within a stage by role then script order, every
+// hook timed, a blow-up caught after the hook that produced it.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include "engine/core/error.hpp"
+#include "engine/core/interrupt.hpp"
+#include "engine/io/restart.hpp"
+#include "engine/core/parallel.hpp"
+#include "engine/core/simulation.hpp"
+
+namespace pbf {
+
+constexpr Role kRoles[] = {Role::solver, Role::other, Role::boundary, Role::output};
+
+class RunLoop {
+ public:
+  explicit RunLoop(Simulation& sim) : sim_(sim) {}
+  // `steps` steps, or (steps < 0) until the time reaches `until`.
+  void run(std::int64_t steps, double until);
+
+ private:
+  struct Hook {
+    Fix* fix;
+    std::size_t row;  // timing row
+  };
+  void prepare();
+  void check_pipeline() const;
+  void step();
+  void run_stage(Stage stage, int iteration = 0);
+  void call(Stage stage, Fix& fix, int iteration);
+  void check_finite(Stage stage, const Fix& fix) const;
+  void check_clumping() const;
+  [[noreturn]] void stop_interrupted();
+  double now() const { return omp_get_wtime(); }
+
+  Simulation& sim_;
+  TimingTable& timing_ = sim_.timing_;
+  std::array<std::vector<Hook>, kStageCount> hooks_;
+  int iterations_ = 1;
+  bool neighbors_ = false;
+  std::size_t row_reorder_ = 0, row_binning_ = 0, row_lists_ = 0, row_checks_ = 0, row_thermo_ = 0;
+  double neighbor_mean_sum_ = 0;
+  long long neighbor_builds_ = 0;
+  double full_neighborhood_ = 0;  // particles within h of one at rest density
+};
+
+void Simulation::run(std::int64_t steps) {
+  if (steps < 0) throw Error(fmt::format("run: the number of steps must be >= 0, got {}", steps));
+  RunLoop(*this).run(steps, 0);
+}
+
+void Simulation::run_until(double time) {
+  if (!std::isfinite(time)) throw Error(fmt::format("run_until: the end time must be finite, got {}", time));
+  RunLoop(*this).run(-1, time);
+}
+
+void RunLoop::prepare() {
+  auto& P = sim_.particles_;
+  if (P.size() == 0) throw Error("run: there are no particles (create them with pbf.lattice or pbf.read_scene)");
+  if (sim_.h_ <= 0) throw Error("run: the kernel radius h is not set (pbf.kernel_radius)");
+  if (sim_.dt_ <= 0) throw Error("run: the time step is not set (pbf.timestep)");
+  sim_.check_inside_domain();
+  sim_.collect_boundaries();
+  sim_.warn_unmatched_states();
+
+  check_pipeline();
+  // Every fix declares the fields it uses; the outputs start last, after the fields no fix
+  // declared are freed, so that they see what this run has.
+  P.begin_declarations();
+  for (Role role : kRoles) {
+    if (role == Role::output) P.free_undeclared();
+    for (const auto& f : sim_.fixes_) {
+      if (f->role() != role) continue;
+      try {
+        f->init(sim_);
+      } catch (const Error& e) {
+        if (e.located()) throw;
+        throw Error(fmt::format("fix '{}' ({}): {}", f->id(), f->style(), e.what()));
+      }
+    }
+  }
+  const double h = sim_.h_;
+  full_neighborhood_ = 4.0 / 3.0 * M_PI * h * h * h * sim_.rest_density_ / P.mean_mass();
+
+  iterations_ = 1;
+  neighbors_ = false;
+  for (auto& hooks : hooks_) hooks.clear();
+  for (Role role : kRoles)
+    for (const auto& f : sim_.fixes_) {
+      if (f->role() != role) continue;
+      for (Stage s : f->stages()) hooks_[static_cast<int>(s)].push_back({f.get(), 0});
+      iterations_ = std::max(iterations_, f->constraint_iterations());
+      neighbors_ = neighbors_ || f->needs_neighbors();
+    }
+
+  // Timing rows in step order, the engine's own work where it happens.
+  timing_ = TimingTable();
+  for (int s = 0; s < kStageCount; ++s) {
+    const char* stage = stage_name(static_cast<Stage>(s));
+    if (static_cast<Stage>(s) == Stage::neighbors && neighbors_) {
+      row_reorder_ = timing_.row(stage, "reorder particles along the grid");
+      row_binning_ = timing_.row(stage, "binning (candidates)");
+      row_lists_ = timing_.row(stage, "neighbour lists");
+    }
+    for (Hook& hook : hooks_[s]) hook.row = timing_.row(stage, fmt::format("{} ({})", hook.fix->id(), hook.fix->style()));
+  }
+  row_thermo_ = timing_.row("end_of_step", "thermo");
+  row_checks_ = timing_.row("checks", "non-finite values, domain");
+}
+
+// What no single fix can see: a force style without an integrator of accelerations.
+// (Two fixes with one job, two integrators among them, are refused when added.)
+void RunLoop::check_pipeline() const {
+  const Fix* integrator = sim_.integrator();
+  for (const auto& f : sim_.fixes_) {
+    if (!f->adds_accelerations() || (integrator && integrator->integration() == Integration::accelerations)) continue;
+    std::string message = fmt::format("fix '{}' ({}): {} adds accelerations, but no fix integrates them", f->id(),
+                                      f->style(), f->style());
+    if (integrator)
+      message += fmt::format(" (fix '{}' ({}) moves positions itself: use one solver)", integrator->id(),
+                             integrator->style());
+    else
+      message += ": add pbf.fix(\"integrator\", \"leapfrog\", {})";
+    throw Error(message);
+  }
+}
+
+void RunLoop::run(std::int64_t steps, double until) {
+  const double start = now();
+  prepare();
+  sim_.thermo_.start_run(sim_);
+  const std::int64_t first = sim_.step_, last = first + steps;
+  const double t0 = sim_.time(), end = until - 1e-12 * std::max(1.0, std::fabs(until));
+  auto more = [&] { return steps >= 0 ? sim_.step_ < last : sim_.time() < end; };
+  double next_progress = start + 10.0;
+  InterruptWatch interrupt;
+  while (more()) {
+    try {
+      step();
+    } catch (const Error& e) {
+      // A failed step leaves the newest restart valid: say where to continue from.
+      const RestartNote& note = sim_.last_restart();
+      if (note.path.empty()) throw;
+      throw Error(fmt::format("{}; the last restart is '{}' (step {}): continue from it with pbf.read_restart",
+                              e.what(), note.path, note.step),
+                  e.located());
+    }
+    if (InterruptWatch::requested()) stop_interrupted();
+    if (now() >= next_progress) {
+      const double elapsed = now() - start;
+      const double done = steps >= 0 ? static_cast<double>(sim_.step_ - first) / static_cast<double>(steps)
+                                     : (sim_.time() - t0) / (until - t0);
+      spdlog::info("progress: step {}, t = {:.6g} s ({:.0f}%), {:.1f} steps/s, about {:.0f} s left", sim_.step_,
+                   sim_.time(), 100.0 * done, static_cast<double>(sim_.step_ - first) / elapsed,
+                   elapsed * (1 - done) / std::max(done, 1e-9));
+      next_progress = now() + 10.0;
+    }
+  }
+  for (const auto& f : sim_.fixes_) f->finish(sim_);
+  timing_.wall_seconds = now() - start;
+  timing_.steps = sim_.step_ - first;
+  timing_.particles = sim_.particles_.size();
+  timing_.neighbor_mean = neighbor_builds_ ? neighbor_mean_sum_ / static_cast<double>(neighbor_builds_) : 0;
+  spdlog::info("{}", timing_.format());
+}
+
+void RunLoop::step() {
+  auto& P = sim_.particles_;
+  const std::int64_t number = sim_.step_ + 1;  // the step being computed
+  if (neighbors_ && sim_.reorder_every_ > 0 && sim_.step_ % sim_.reorder_every_ == 0) {
+    // Neighbours near in memory: particles in grid-cell order (deterministic, stable).
+    const double t0 = now();
+    sim_.grid_.bin(P.x(), P.y(), P.z(), P.size(), sim_.domain_, sim_.h_);
+    P.permute(sim_.grid_.sorted_order());
+    sim_.positions_changed();
+    timing_.add(row_reorder_, now() - t0);
+  }
+  run_stage(Stage::external_forces);
+  run_stage(Stage::predict);
+  if (neighbors_) {
+    double t0 = now();
+    sim_.grid_.bin(P.x(), P.y(), P.z(), P.size(), sim_.domain_, sim_.h_);
+    const double t1 = now();
+    sim_.grid_.build_lists(P.x(), P.y(), P.z(), sim_.h_);
+    sim_.grid_version_ = sim_.positions_version_;
+    timing_.add(row_binning_, t1 - t0);
+    timing_.add(row_lists_, now() - t1);
+    neighbor_mean_sum_ += sim_.grid_.mean_neighbors();
+    ++neighbor_builds_;
+    const std::uint32_t most = sim_.grid_.max_neighbors();
+    timing_.neighbor_max = std::max(timing_.neighbor_max, most);
+    if (most > 20 * full_neighborhood_ + 100) check_clumping();
+  }
+  run_stage(Stage::forces);
+  for (int it = 0; it < iterations_; ++it) run_stage(Stage::constraints, it);
+  run_stage(Stage::velocity_update);
+  run_stage(Stage::velocity_post);
+
+  ++sim_.step_;
+  const double t0 = now();
+  try {
+    sim_.check_inside_domain();
+  } catch (const Error& e) {
+    throw Error(fmt::format("step {}: {}", number, e.what()));
+  }
+  timing_.add(row_checks_, now() - t0);
+  run_stage(Stage::end_of_step);
+  const double t1 = now();
+  sim_.thermo_.end_of_step(sim_);
+  timing_.add(row_thermo_, now() - t1);
+}
+
+void RunLoop::run_stage(Stage stage, int iteration) {
+  for (const Hook& hook : hooks_[static_cast<int>(stage)]) {
+    const double t0 = now();
+    call(stage, *hook.fix, iteration);
+    const double t1 = now();
+    timing_.add(hook.row, t1 - t0);
+    if (stage == Stage::predict || stage == Stage::constraints || stage == Stage::velocity_update)
+      sim_.positions_changed();
+    if (stage != Stage::end_of_step) {
+      check_finite(stage, *hook.fix);
+      timing_.add(row_checks_, now() - t1);
+    }
+  }
+}
+
+void RunLoop::call(Stage stage, Fix& fix, int iteration) {
+  try {
+    switch (stage) {
+      case Stage::external_forces: fix.external_forces(sim_); break;
+      case Stage::predict: fix.predict(sim_); break;
+      case Stage::neighbors: break;
+      case Stage::forces: fix.forces(sim_); break;
+      case Stage::constraints: fix.constraint(sim_, iteration); break;
+      case Stage::velocity_update: fix.velocity_update(sim_); break;
+      case Stage::velocity_post: fix.velocity_post(sim_); break;
+      case Stage::end_of_step: fix.end_of_step(sim_); break;
+    }
+  } catch (const Error& e) {
+    if (e.located()) throw;
+    throw Error(fmt::format("step {}: fix '{}' ({}): {}", sim_.step_ + (stage == Stage::end_of_step ? 0 : 1), fix.id(),
+                            fix.style(), e.what()));
+  }
+}
+
+// Ctrl-C: the step is complete; flush the fixes' files, save the state, stop.
+void RunLoop::stop_interrupted() {
+  for (const auto& f : sim_.fixes_) f->finish(sim_);
+  std::string path;
+  for (const auto& f : sim_.fixes_)
+    if (auto written = f->write_restart_now(sim_)) path = *written;
+  if (path.empty()) {
+    path = fmt::format("interrupted.{}.restart", sim_.step_);
+    write_restart(sim_, path);
+  }
+  throw Interrupted(fmt::format("interrupted (Ctrl-C) after step {} (t = {} s): wrote restart '{}'; continue "
+                                "with pbf.read_restart('{}')",
+                                sim_.step_, sim_.time(), path, path),
+                    path);
+}
+
+// Particles packed at many times the rest density: the solver has failed (a time step too
+// large, an unstable setting). Stop before the neighbour lists grow toward N^2 memory.
+void RunLoop::check_clumping() const {
+  const auto& grid = sim_.grid_;
+  std::size_t first = 0;
+  while (first < grid.particle_count() && grid.count(first) <= 20 * full_neighborhood_ + 100) ++first;
+  throw Error(fmt::format(
+      "step {}: the fluid has collapsed into clumps: particle {} has {} neighbours within h, where a particle at "
+      "rest density has about {:.0f} (a time step too large for the solver, or an unstable setting such as a "
+      "two-sided constraint without wall density)",
+      sim_.step_ + 1, sim_.particles_.ids()[first], grid.count(first), full_neighborhood_));
+}
+
+void RunLoop::check_finite(Stage stage, const Fix& fix) const {
+  const auto& P = sim_.particles_;
+  const real *x = P.x(), *y = P.y(), *z = P.z(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+  const std::size_t n = P.size();
+  std::size_t first = n;
+  // x * 0 is NaN exactly when x is NaN or infinite; the sum vectorises.
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (std::size_t i = 0; i < n; ++i) {
+    const real s = x[i] * 0 + y[i] * 0 + z[i] * 0 + vx[i] * 0 + vy[i] * 0 + vz[i] * 0;
+    if (s != s) first = std::min(first, i);
+  }
+  if (first == n) return;
+  throw Error(fmt::format(
+      "step {}: the simulation blew up: particle {} has a non-finite position or velocity "
+      "(position {} {} {}, velocity {} {} {}) after fix '{}' ({}) in stage {}",
+      sim_.step_ + 1, P.ids()[first], x[first], y[first], z[first], vx[first], vy[first], vz[first], fix.id(),
+      fix.style(), stage_name(stage)));
+}
+
+}  // namespace pbf

@@ -1,0 +1,199 @@
+#include "engine/core/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include <spdlog/spdlog.h>
+
+#include "engine/core/error.hpp"
+#include "engine/io/bytes.hpp"
+
+namespace pbf {
+
+Simulation::Simulation() = default;
+Simulation::~Simulation() = default;
+
+void Simulation::set_domain(const Domain& domain) {
+  for (int a = 0; a < 3; ++a)
+    if (!(domain.hi[a] > domain.lo[a]) || !std::isfinite(domain.lo[a]) || !std::isfinite(domain.hi[a]))
+      throw Error(fmt::format("domain: hi must exceed lo along every axis (axis {}: lo {}, hi {})", "xyz"[a],
+                              domain.lo[a], domain.hi[a]));
+  domain_ = domain;
+  positions_changed();
+}
+
+void Simulation::set_kernel_radius(double h) {
+  if (!(h > 0) || !std::isfinite(h)) throw Error(fmt::format("kernel radius h must be positive, got {}", h));
+  h_ = h;
+  kernels_ = Kernels(h);
+  positions_changed();
+}
+
+void Simulation::set_timestep(double dt) {
+  if (!(dt > 0) || !std::isfinite(dt)) throw Error(fmt::format("time step must be positive, got {}", dt));
+  // time() = time_base_ + (step - step_base_) dt: exact multiples of dt, no drift.
+  time_base_ = time();
+  step_base_ = step_;
+  dt_ = dt;
+}
+
+void Simulation::set_rest_density(double rho0) {
+  if (!(rho0 > 0) || !std::isfinite(rho0)) throw Error(fmt::format("rest density must be positive, got {}", rho0));
+  rest_density_ = rho0;
+}
+
+void Simulation::set_clock(const Clock& clock) {
+  step_ = clock.step;
+  step_base_ = clock.step_base;
+  time_base_ = clock.time_base;
+}
+
+void Simulation::add_fix(std::unique_ptr<Fix> fix) {
+  if (find_fix(fix->id()))
+    throw Error(fmt::format("a fix with id '{}' exists already (unfix it first)", fix->id()));
+  if (const char* job = fix->exclusive_job())
+    for (const auto& f : fixes_)
+      if (const char* other = f->exclusive_job(); other && std::string(other) == job)
+        throw Error(fmt::format("fix '{}' ({}): fix '{}' ({}) does the {} already, and a pipeline has one (pbf.unfix('{}') "
+                                "first to replace it)",
+                                fix->id(), fix->style(), f->id(), f->style(), job, f->id()));
+  restore_saved_state(*fix);
+  fixes_.push_back(std::move(fix));
+  collect_boundaries();
+}
+
+void Simulation::set_saved_states(std::vector<SavedFixState> states, const std::string& source) {
+  saved_states_ = std::move(states);
+  saved_states_source_ = source;
+  fixes_restored_.clear();
+  check_saved_states_ = true;
+  for (auto& f : fixes_) restore_saved_state(*f);  // fixes declared before the read
+}
+
+void Simulation::restore_saved_state(Fix& fix) {
+  auto it = std::find_if(saved_states_.begin(), saved_states_.end(), [&](const auto& s) { return s.id == fix.id(); });
+  if (it == saved_states_.end()) return;
+  if (it->style != fix.style()) {
+    spdlog::warn("fix '{}' is style '{}' here but '{}' in restart '{}': its saved state is not used", fix.id(),
+                 fix.style(), it->style, saved_states_source_);
+  } else {
+    const std::string what = fmt::format("restart '{}', state of fix '{}' ({})", saved_states_source_, fix.id(),
+                                         fix.style());
+    ByteReader reader(it->bytes.data(), it->bytes.size(), what);
+    fix.restore_state(reader);
+    if (reader.left() != 0)
+      throw Error(fmt::format("{}: {} bytes left over (written by another version of the style?)", what,
+                              reader.left()));
+    fixes_restored_.push_back(fix.id());
+  }
+  saved_states_.erase(it);
+}
+
+// At the first run after a restart: name fixes that are on one side only, since a pipeline
+// that differs from the saved one does not continue the saved run exactly.
+void Simulation::warn_unmatched_states() {
+  if (!check_saved_states_) return;
+  check_saved_states_ = false;
+  for (const auto& s : saved_states_)
+    spdlog::warn("fix '{}' ({}) is in restart '{}' but not in the pipeline: its saved state is dropped", s.id,
+                 s.style, saved_states_source_);
+  for (const auto& f : fixes_)
+    if (std::find(fixes_restored_.begin(), fixes_restored_.end(), f->id()) == fixes_restored_.end())
+      spdlog::warn("fix '{}' ({}) is not in restart '{}': it starts afresh", f->id(), f->style(),
+                   saved_states_source_);
+  saved_states_.clear();
+}
+
+void Simulation::collect_boundaries() {
+  boundaries_.clear();
+  for (const auto& f : fixes_)
+    if (DensityBoundary* b = f->density_boundary()) boundaries_.push_back(b);
+  positions_changed();  // the density the cache holds may have changed
+}
+
+void Simulation::remove_fix(const std::string& id) {
+  auto it = std::find_if(fixes_.begin(), fixes_.end(), [&](const auto& f) { return f->id() == id; });
+  if (it == fixes_.end()) throw Error(fmt::format("no fix with id '{}'", id));
+  fixes_.erase(it);
+  collect_boundaries();
+}
+
+const Fix* Simulation::integrator() const {
+  for (const auto& f : fixes_)
+    if (f->integration() != Integration::none) return f.get();
+  return nullptr;
+}
+
+double Simulation::max_signal_speed() const {
+  double c = 0;
+  for (const auto& f : fixes_) c = std::max(c, f->signal_speed());
+  return c;
+}
+
+Fix* Simulation::find_fix(const std::string& id) const {
+  for (const auto& f : fixes_)
+    if (f->id() == id) return f.get();
+  return nullptr;
+}
+
+void Simulation::add_compute(std::unique_ptr<Compute> compute) {
+  if (find_compute(compute->id()))
+    throw Error(fmt::format("a compute with id '{}' exists already", compute->id()));
+  computes_.push_back(std::move(compute));
+}
+
+void Simulation::remove_compute(const std::string& id) {
+  auto it = std::find_if(computes_.begin(), computes_.end(), [&](const auto& c) { return c->id() == id; });
+  if (it == computes_.end()) throw Error(fmt::format("no compute with id '{}'", id));
+  computes_.erase(it);
+}
+
+Compute* Simulation::find_compute(const std::string& id) const {
+  for (const auto& c : computes_)
+    if (c->id() == id) return c.get();
+  return nullptr;
+}
+
+void Simulation::refresh_neighbors() {
+  if (grid_version_ == positions_version_ && grid_.particle_count() == particles_.size()) return;
+  if (h_ <= 0) throw Error("the kernel radius h is not set");
+  const auto& P = particles_;
+  grid_.bin(P.x(), P.y(), P.z(), P.size(), domain_, h_);
+  grid_.build_lists(P.x(), P.y(), P.z(), h_);
+  grid_version_ = positions_version_;
+}
+
+const std::vector<real>& Simulation::density() {
+  if (density_version_ == positions_version_ && density_.size() == particles_.size()) return density_;
+  if (grid_.particle_count() != particles_.size()) refresh_neighbors();
+  const std::size_t n = particles_.size();
+  density_.resize(n);
+  const real *x = particles_.x(), *y = particles_.y(), *z = particles_.z(), *m = particles_.mass();
+  const Kernels& K = kernels_;
+  for (DensityBoundary* b : boundaries_) b->prepare(*this);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    real rho = m[i] * K.poly6(0);
+    grid_.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) { rho += m[j] * K.poly6(r2); });
+    real grad[3] = {0, 0, 0};
+    for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], rho, grad);
+    density_[i] = rho;
+  }
+  density_version_ = positions_version_;
+  return density_;
+}
+
+void Simulation::check_inside_domain() const {
+  const auto& P = particles_;
+  std::size_t first = P.size();
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!domain_.contains(P.x()[i], P.y()[i], P.z()[i])) first = std::min(first, i);
+  if (first == P.size()) return;
+  throw Error(fmt::format("particle {} at ({}, {}, {}) is outside the domain [{}, {}] x [{}, {}] x [{}, {}]",
+                          P.ids()[first], P.x()[first], P.y()[first], P.z()[first], domain_.lo[0], domain_.hi[0],
+                          domain_.lo[1], domain_.hi[1], domain_.lo[2], domain_.hi[2]));
+}
+
+}  // namespace pbf

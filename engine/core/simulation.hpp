@@ -1,0 +1,139 @@
+#pragma once
+// The simulation: the scene (domain, kernel radius, time step, particles), the pipeline of
+// fixes and computes a script assembles, and the run loop. It knows nothing of Lua.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/core/compute.hpp"
+#include "engine/sph/density_boundary.hpp"
+#include "engine/core/domain.hpp"
+#include "engine/core/fix.hpp"
+#include "engine/sph/kernels.hpp"
+#include "engine/sph/neighbor_grid.hpp"
+#include "engine/core/particles.hpp"
+#include "engine/core/thermo.hpp"
+#include "engine/core/timing.hpp"
+
+namespace pbf {
+
+// Where a simulation's clock stands: time() = time_base + (step - step_base) dt, exact
+// multiples of dt since the last change of time step. A restart saves and restores it.
+struct Clock {
+  std::int64_t step = 0, step_base = 0;
+  double time_base = 0;
+};
+
+// A fix's state read from a restart, waiting for the script to declare that fix again.
+struct SavedFixState {
+  std::string id, style;
+  std::vector<unsigned char> bytes;
+};
+
+// The newest restart written or read: a run that blows up names it.
+struct RestartNote {
+  std::string path;
+  std::int64_t step = -1;
+};
+
+class Simulation {
+ public:
+  Simulation();
+  ~Simulation();
+
+  // --- the scene ---
+  Particles& particles() { return particles_; }
+  const Particles& particles() const { return particles_; }
+  const Domain& domain() const { return domain_; }
+  void set_domain(const Domain& domain);
+  double kernel_radius() const { return h_; }
+  void set_kernel_radius(double h);
+  const Kernels& kernels() const { return kernels_; }
+  double timestep() const { return dt_; }
+  void set_timestep(double dt);
+  double rest_density() const { return rest_density_; }
+  void set_rest_density(double rho0);
+  // Steps between reorderings of particle memory along the grid (0: never).
+  void set_reorder_interval(int steps) { reorder_every_ = steps; }
+
+  std::int64_t step() const { return step_; }
+  double time() const { return time_base_ + static_cast<double>(step_ - step_base_) * dt_; }
+  Clock clock() const { return {step_, step_base_, time_base_}; }
+  void set_clock(const Clock& clock);
+  int reorder_interval() const { return reorder_every_; }
+
+  // --- restarts ---
+  // States from a restart: each goes to the fix of the same id (and style) when the script
+  // adds it; the first run warns about fixes on one side only.
+  void set_saved_states(std::vector<SavedFixState> states, const std::string& source);
+  const RestartNote& last_restart() const { return last_restart_; }
+  void set_last_restart(RestartNote note) { last_restart_ = std::move(note); }
+
+  // --- the pipeline ---
+  void add_fix(std::unique_ptr<Fix> fix);
+  void remove_fix(const std::string& id);
+  Fix* find_fix(const std::string& id) const;
+  const std::vector<std::unique_ptr<Fix>>& fixes() const { return fixes_; }
+  void add_compute(std::unique_ptr<Compute> compute);
+  void remove_compute(const std::string& id);
+  Compute* find_compute(const std::string& id) const;
+  const std::vector<std::unique_ptr<Compute>>& computes() const { return computes_; }
+  Thermo& thermo() { return thermo_; }
+  // The pipeline's queries, one place each:
+  // the fix that moves particles through time (pbf, leapfrog), or nullptr;
+  const Fix* integrator() const;
+  // the fastest signal any fix's physics carries (m/s; 0: none), for time-step control.
+  double max_signal_speed() const;
+
+  // Runs `steps` steps; may be called again, with the pipeline changed in between.
+  void run(std::int64_t steps);
+  // Runs until the time reaches `time` (within a relative 1e-12): with a time step that
+  // changes as the run goes (fix cfl), the number of steps is not known in advance.
+  void run_until(double time);
+  const TimingTable& last_timing() const { return timing_; }
+
+  // --- services for fixes and computes ---
+  // Neighbour lists of this step's neighbour stage (built from predicted positions).
+  const NeighborGrid& neighbors() const { return grid_; }
+  // Rebuilds the lists if positions changed since they were built (for measurements).
+  void refresh_neighbors();
+  // SPH density with wall contributions, at the current positions over the current lists.
+  const std::vector<real>& density();
+  // Fixes that move particles outside the run loop's knowledge call this.
+  void positions_changed() { ++positions_version_; }
+  const std::vector<DensityBoundary*>& density_boundaries() const { return boundaries_; }
+
+ private:
+  friend class RunLoop;
+  void check_inside_domain() const;
+  void collect_boundaries();
+  void restore_saved_state(Fix& fix);
+  void warn_unmatched_states();
+
+  Particles particles_;
+  Domain domain_;
+  double h_ = 0, dt_ = 0, rest_density_ = 1000;
+  Kernels kernels_{1.0};
+  int reorder_every_ = 20;
+  std::int64_t step_ = 0, step_base_ = 0;
+  double time_base_ = 0;
+
+  std::vector<SavedFixState> saved_states_;
+  std::string saved_states_source_;
+  std::vector<std::string> fixes_restored_;  // ids given their saved state
+  bool check_saved_states_ = false;           // warn at the next run about fixes on one side only
+  RestartNote last_restart_;
+
+  std::vector<std::unique_ptr<Fix>> fixes_;
+  std::vector<std::unique_ptr<Compute>> computes_;
+  Thermo thermo_;
+  TimingTable timing_;
+
+  NeighborGrid grid_;
+  std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0;
+  std::vector<real> density_;
+  std::vector<DensityBoundary*> boundaries_;
+};
+
+}  // namespace pbf

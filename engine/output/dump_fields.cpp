@@ -1,0 +1,109 @@
+#include "engine/output/dump_fields.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/sph/velocity_curl.hpp"
+
+namespace pbf {
+
+namespace {
+
+struct Derived {
+  const char* name;
+  const char* unit;
+};
+constexpr Derived kDerived[] = {{"id", ""},
+                                {"density", "kg/m^3"},
+                                {"density_error", ""},
+                                {"speed", "m/s"},
+                                {"vorticity_magnitude", "1/s"}};
+
+const Derived* derived(const std::string& name) {
+  for (const auto& d : kDerived)
+    if (name == d.name) return &d;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> DumpFields::valid_names(const Simulation& sim) {
+  std::vector<std::string> names;
+  const auto& P = sim.particles();
+  for (FieldId f : P.fields()) names.push_back(P.spec(f).name);
+  for (const auto& d : kDerived)
+    if (!P.find(d.name)) names.emplace_back(d.name);  // a declared field of that name wins
+  return names;
+}
+
+void DumpFields::resolve(const Simulation& sim) {
+  const auto& P = sim.particles();
+  components_.clear();
+  for (const auto& name : names_) {
+    if (auto f = P.find(name)) {  // a field a fix keeps (wcsph's density) before a derived one
+      components_.push_back(P.spec(*f).components);
+    } else if (derived(name)) {
+      components_.push_back(1);
+    } else {
+      std::string valid;
+      for (const auto& v : valid_names(sim)) valid += (valid.empty() ? "" : ", ") + v;
+      throw Error(fmt::format("unknown field '{}'; valid fields: {}", name, valid));
+    }
+  }
+}
+
+std::string DumpFields::unit(std::size_t k) const {
+  if (const Derived* d = derived(names_[k])) return d->unit;
+  if (names_[k] == "position") return "m";
+  if (names_[k] == "velocity") return "m/s";
+  if (names_[k] == "mass") return "kg";
+  return "";
+}
+
+void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) {
+  const auto& P = sim.particles();
+  const std::size_t n = P.size();
+  const std::string& name = names_[k];
+  const int nc = components_[k];
+  // One value per particle in memory order first, then reordered by id below.
+  std::vector<const real*> columns;
+  if (const auto f = P.find(name)) {
+    for (int c = 0; c < nc; ++c) columns.push_back(P.data(*f, c));
+  } else if (name == "density" || name == "density_error") {
+    sim.refresh_neighbors();
+    const std::vector<real>& rho = sim.density();
+    scratch_.resize(n);
+    const real inverse = real(1 / sim.rest_density());
+    for (std::size_t i = 0; i < n; ++i) scratch_[i] = name == "density" ? rho[i] : rho[i] * inverse - 1;
+    columns = {scratch_.data()};
+  } else if (name == "speed") {
+    scratch_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      scratch_[i] = std::sqrt(P.vx()[i] * P.vx()[i] + P.vy()[i] * P.vy()[i] + P.vz()[i] * P.vz()[i]);
+    columns = {scratch_.data()};
+  } else if (name == "vorticity_magnitude") {
+    sim.refresh_neighbors();
+    const std::vector<real>& rho = sim.density();
+    std::vector<real> w(3 * n);
+    scratch_.resize(n);
+    velocity_curl(sim, rho, w.data(), w.data() + n, w.data() + 2 * n, scratch_.data());
+    columns = {scratch_.data()};
+  } else if (name == "id") {
+    throw Error("internal: the id field is gathered with gather_ids");
+  }
+  const std::vector<std::uint32_t> index = P.index_of_id();
+  out.resize(n * static_cast<std::size_t>(nc));
+#pragma omp parallel for schedule(static)
+  for (std::size_t id = 0; id < n; ++id)
+    for (int c = 0; c < nc; ++c) out[id * static_cast<std::size_t>(nc) + static_cast<std::size_t>(c)] = columns[c][index[id]];
+}
+
+void DumpFields::gather_ids(const Simulation& sim, std::vector<std::int64_t>& out) const {
+  out.resize(sim.particles().size());
+  for (std::size_t id = 0; id < out.size(); ++id) out[id] = static_cast<std::int64_t>(id);
+}
+
+}  // namespace pbf

@@ -1,0 +1,38 @@
+#pragma once
+// Each style file defines one register_<style>() function; builtin_styles.cpp calls them all.
+#include <memory>
+
+#include "engine/registry/style_registry.hpp"
+
+namespace pbf {
+
+// The factory of a compute style whose constructor takes (id, params).
+template <class T>
+auto make_compute() {
+  return [](const std::string& id, const Params& p) { return std::make_unique<T>(id, p); };
+}
+
+void register_gravity(StyleRegistry&);
+void register_pbf(StyleRegistry&);
+void register_box(StyleRegistry&);
+void register_vorticity(StyleRegistry&);
+void register_xsph(StyleRegistry&);
+void register_dump_text(StyleRegistry&);
+void register_dump_vtk(StyleRegistry&);
+void register_dump_image(StyleRegistry&);
+void register_dump_movie(StyleRegistry&);
+void register_restart(StyleRegistry&);
+void register_wcsph(StyleRegistry&);
+void register_sph_viscosity(StyleRegistry&);
+void register_leapfrog(StyleRegistry&);
+void register_cfl(StyleRegistry&);
+
+void register_compute_density(StyleRegistry&);
+void register_compute_density_error(StyleRegistry&);
+void register_compute_kinetic_energy(StyleRegistry&);
+void register_compute_speed(StyleRegistry&);
+void register_compute_count(StyleRegistry&);
+void register_compute_extent(StyleRegistry&);
+void register_compute_front(StyleRegistry&);
+
+}  // namespace pbf

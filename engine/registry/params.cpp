@@ -1,0 +1,129 @@
+#include "engine/registry/params.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+
+namespace pbf {
+
+const char* type_name(ParamType type) {
+  switch (type) {
+    case ParamType::Real: return "number";
+    case ParamType::Integer: return "integer";
+    case ParamType::Bool: return "boolean";
+    case ParamType::String: return "string";
+    case ParamType::Vector3: return "vector {x, y, z}";
+    case ParamType::StringList: return "list of names";
+  }
+  return "?";
+}
+
+std::string format_value(const ParamValue& value) {
+  struct {
+    std::string operator()(double v) const { return fmt::format("{}", v); }
+    std::string operator()(std::int64_t v) const { return fmt::format("{}", v); }
+    std::string operator()(bool v) const { return v ? "true" : "false"; }
+    std::string operator()(const std::string& v) const { return fmt::format("\"{}\"", v); }
+    std::string operator()(const Vec3& v) const { return fmt::format("{{{}, {}, {}}}", v[0], v[1], v[2]); }
+    std::string operator()(const Names& v) const {
+      std::string s;
+      for (const auto& name : v) s += (s.empty() ? "\"" : ", \"") + name + "\"";
+      return "{" + s + "}";
+    }
+  } visitor;
+  return std::visit(visitor, value);
+}
+
+namespace {
+
+const char* given_type(const ParamValue& value) {
+  switch (value.index()) {
+    case 0: return "number";
+    case 1: return "integer";
+    case 2: return "boolean";
+    case 3: return "string";
+    case 4: return "vector";
+    default: return "list of names";
+  }
+}
+
+// Converts a given value to the declared type, or returns nothing if it does not fit.
+std::optional<ParamValue> coerce(const ParamValue& value, ParamType type) {
+  switch (type) {
+    case ParamType::Real:
+      if (auto* d = std::get_if<double>(&value)) return *d;
+      if (auto* i = std::get_if<std::int64_t>(&value)) return static_cast<double>(*i);
+      return std::nullopt;
+    case ParamType::Integer:
+      if (auto* i = std::get_if<std::int64_t>(&value)) return *i;
+      if (auto* d = std::get_if<double>(&value)) {  // integral floats (3.0) are integers
+        if (std::isfinite(*d) && *d == std::floor(*d) && std::fabs(*d) < 9.0e15)
+          return static_cast<std::int64_t>(*d);
+      }
+      return std::nullopt;
+    case ParamType::Bool:
+      if (auto* b = std::get_if<bool>(&value)) return *b;
+      return std::nullopt;
+    case ParamType::String:
+      if (auto* s = std::get_if<std::string>(&value)) return *s;
+      return std::nullopt;
+    case ParamType::Vector3:
+      if (auto* v = std::get_if<Vec3>(&value)) return *v;
+      return std::nullopt;
+    case ParamType::StringList:
+      if (auto* v = std::get_if<Names>(&value)) return *v;
+      if (auto* s = std::get_if<std::string>(&value)) return Names{*s};  // one name alone
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+std::string names_of(const std::vector<ParamSpec>& schema) {
+  std::string names;
+  for (const auto& spec : schema) names += (names.empty() ? "" : ", ") + spec.name;
+  return names.empty() ? "(none)" : names;
+}
+
+}  // namespace
+
+Params::Params(const std::string& what, const std::vector<ParamSpec>& schema, const GivenParams& given) {
+  for (const auto& [name, value] : given) {
+    const ParamSpec* spec = nullptr;
+    for (const auto& s : schema)
+      if (s.name == name) spec = &s;
+    if (!spec)
+      throw Error(fmt::format("{}: unknown parameter '{}'; valid parameters: {}", what, name, names_of(schema)));
+    if (values_.count(name)) throw Error(fmt::format("{}: parameter '{}' given twice", what, name));
+    auto converted = coerce(value, spec->type);
+    if (!converted)
+      throw Error(fmt::format("{}: parameter '{}' must be of type {}, got {} {}", what, name, type_name(spec->type),
+                              given_type(value), format_value(value)));
+    if (auto* d = std::get_if<double>(&*converted); d && !std::isfinite(*d))
+      throw Error(fmt::format("{}: parameter '{}' must be finite, got {}", what, name, *d));
+    if (auto* v = std::get_if<Vec3>(&*converted))
+      for (double c : *v)
+        if (!std::isfinite(c)) throw Error(fmt::format("{}: parameter '{}' must be finite", what, name));
+    values_[name] = *converted;
+  }
+  for (const auto& spec : schema) {
+    if (values_.count(spec.name) || spec.optional) continue;
+    if (!spec.default_value) throw Error(fmt::format("{}: parameter '{}' is required", what, spec.name));
+    values_[spec.name] = *spec.default_value;
+  }
+}
+
+const ParamValue& Params::at(const std::string& name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw Error(fmt::format("internal: parameter '{}' not declared", name));
+  return it->second;
+}
+
+double Params::real(const std::string& name) const { return std::get<double>(at(name)); }
+std::int64_t Params::integer(const std::string& name) const { return std::get<std::int64_t>(at(name)); }
+bool Params::boolean(const std::string& name) const { return std::get<bool>(at(name)); }
+const std::string& Params::string(const std::string& name) const { return std::get<std::string>(at(name)); }
+Vec3 Params::vec3(const std::string& name) const { return std::get<Vec3>(at(name)); }
+const Names& Params::names(const std::string& name) const { return std::get<Names>(at(name)); }
+
+}  // namespace pbf

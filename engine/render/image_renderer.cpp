@@ -1,0 +1,385 @@
+#include "engine/render/image_renderer.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <utility>
+
+#include "engine/core/error.hpp"
+#include "engine/render/image_text.hpp"
+
+namespace pbf {
+
+namespace {
+
+constexpr double kFieldOfViewY = 30.0 * 3.14159265358979323846 / 180.0;
+constexpr double kFitMargin = 0.92;  // the bounding sphere spans 92% of the scene area's smaller side
+constexpr int kTile = 32;            // screen tiles of kTile x kTile pixels, one task each
+constexpr std::uint32_t kNoParticle = std::numeric_limits<std::uint32_t>::max();
+
+using Vec3 = std::array<double, 3>;
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+bool finite(const Vec3& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+
+// Text and lines are dark on a light background and light on a dark one.
+Rgb ink_for(const Rgb& background) {
+  const int luminance = (299 * background[0] + 587 * background[1] + 114 * background[2]) / 1000;
+  return luminance >= 128 ? Rgb{25, 25, 25} : Rgb{230, 230, 230};
+}
+
+}  // namespace
+
+
+namespace {
+
+// Where the colour bar goes; the scene is centred in the rest of the image. Fixed by the spec
+// alone (not by vmin, vmax) so that the camera does not jump between frames.
+struct Layout {
+  int scene_width;  // the image width less the colour bar strip
+  int bar_x, bar_y, bar_w, bar_h;
+  int tick_length, margin;
+};
+
+Layout make_layout(const ImageSpec& spec, const TextRenderer& font) {
+  const int W = spec.width, H = spec.height, fs = font.pixels();
+  Layout l{};
+  l.margin = fs;
+  l.tick_length = std::max(3, fs / 3);
+  l.bar_w = std::max(8, fs);
+  l.bar_h = H * 3 / 5;
+  l.bar_y = (H - l.bar_h) / 2 + fs / 2;  // a little low, leaving room for the title above
+  // The widest label "{:.3g}" can make (digits are equally wide in DejaVu Sans).
+  const int strip = l.margin + l.bar_w + l.tick_length + fs / 3 + font.width("-8.88e-88") + l.margin / 2;
+  l.scene_width = spec.colorbar ? std::max(W / 2, W - strip) : W;
+  l.bar_x = l.scene_width + l.margin;
+  return l;
+}
+
+// Perspective camera: camera coordinates right, up and forward (the view direction).
+struct Camera {
+  Vec3 eye, right, up, forward;
+  double focal;   // pixels per unit of (lateral offset / depth)
+  double cx, cy;  // the image point on the view axis
+  double near;    // nothing nearer than this is drawn
+
+  Camera(const ImageSpec& spec, const Domain& domain, int scene_width) {
+    const Vec3 lo{domain.lo[0], domain.lo[1], domain.lo[2]}, hi{domain.hi[0], domain.hi[1], domain.hi[2]};
+    const Vec3 mid = scaled({lo[0] + hi[0], lo[1] + hi[1], lo[2] + hi[2]}, 0.5);
+    const double bounding_radius = std::max(0.5 * norm(sub(hi, lo)), 1e-12);
+    const Vec3 target = spec.center.value_or(mid);
+    forward = spec.eye ? sub(target, *spec.eye) : spec.direction;
+    if (!(norm(forward) > 0) || !finite(forward)) throw Error("image: the camera position is the point it looks at");
+    forward = scaled(forward, 1 / norm(forward));
+    if (norm(cross(forward, spec.up)) <= 1e-3 * norm(spec.up))
+      throw Error("image: the camera looks along 'up'; choose another 'up' or camera position");
+    right = cross(forward, spec.up);
+    right = scaled(right, 1 / norm(right));
+    up = cross(right, forward);
+    cx = 0.5 * scene_width;
+    cy = 0.5 * spec.height;
+    // At zoom 1 the sphere's outline, a circle of radius focal * tan(half-angle), fills
+    // kFitMargin of the smaller side of the scene area.
+    const double focal_zoom1 = 0.5 * spec.height / std::tan(0.5 * kFieldOfViewY);
+    const double outline = 0.5 * kFitMargin * std::min(scene_width, spec.height);
+    const double distance = bounding_radius / std::sin(std::atan(outline / focal_zoom1));
+    eye = spec.eye ? *spec.eye : sub(target, scaled(forward, distance));
+    focal = focal_zoom1 * spec.zoom;
+    near = 1e-6 * norm(sub(target, eye));
+  }
+
+  // Camera coordinates of a world point: lateral x, y and depth along the view direction.
+  Vec3 to_camera(const Vec3& p) const {
+    const Vec3 d = sub(p, eye);
+    return {dot(d, right), dot(d, up), dot(d, forward)};
+  }
+  double screen_x(const Vec3& c) const { return cx + focal * c[0] / c[2]; }
+  double screen_y(const Vec3& c) const { return cy - focal * c[1] / c[2]; }
+};
+
+// A particle as drawn: a disc on the screen, its centre's depth and its colour.
+struct Disc {
+  float sx, sy, r, depth;
+  Rgb colour;
+  bool visible;
+  // The tiles the disc's bounding square overlaps; clamped in float before the conversion to
+  // int, as a disc may reach far beyond the image.
+  void tiles(int tiles_x, int tiles_y, int& tx0, int& tx1, int& ty0, int& ty1) const {
+    auto tile = [](float p, int count) { return int(std::clamp(std::floor(p / kTile), 0.0f, float(count - 1))); };
+    tx0 = tile(sx - r, tiles_x), tx1 = tile(sx + r, tiles_x), ty0 = tile(sy - r, tiles_y), ty1 = tile(sy + r, tiles_y);
+  }
+};
+
+// The particles overlapping each tile of the scene area, tile by tile, each tile's in
+// ascending index.
+struct TileBins {
+  int area_width, area_height;  // the scene area, at the image's top left
+  int tiles_x, tiles_y;
+  std::vector<std::size_t> start;  // tile t's particles are particles[start[t] .. start[t+1])
+  std::vector<std::uint32_t> particles;
+};
+
+// Projects every particle into discs and bins them into tiles by a counting sort over
+// (tile, thread), with per-thread histograms of contiguous index blocks as in NeighborGrid:
+// the order within a tile is ascending index at any thread count.
+TileBins project_and_bin(const Camera& cam, const Colormap& colormap, double sphere_radius, int scene_width, int height,
+                         const real* x, const real* y, const real* z, const double* value, std::size_t n, double vmin,
+                         double vmax, std::vector<Disc>& discs) {
+  TileBins bins{scene_width, height, (scene_width + kTile - 1) / kTile, (height + kTile - 1) / kTile, {}, {}};
+  const int tile_count = bins.tiles_x * bins.tiles_y;
+  bins.start.assign(tile_count + 1, 0);
+  discs.resize(n);
+  std::vector<std::vector<std::size_t>> histogram(omp_get_max_threads());
+#pragma omp parallel num_threads(static_cast <int>(histogram.size()))
+  {
+    const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    const std::size_t begin = n * t / team, end = n * (t + 1) / team;
+    auto& hist = histogram[t];
+    hist.assign(tile_count, 0);
+    for (std::size_t i = begin; i < end; ++i) {
+      Disc& d = discs[i];
+      const Vec3 c = cam.to_camera({double(x[i]), double(y[i]), double(z[i])});
+      d.depth = static_cast<float>(c[2]);
+      d.sx = static_cast<float>(cam.screen_x(c));
+      d.sy = static_cast<float>(cam.screen_y(c));
+      // At least about a pixel wide, so that no particle vanishes however far or small.
+      d.r = std::max(0.75f, static_cast<float>(cam.focal * sphere_radius / c[2]));
+      d.colour = colormap.at(value[i], vmin, vmax);
+      d.visible = c[2] > cam.near + sphere_radius && std::isfinite(d.sx) && std::isfinite(d.sy) && std::isfinite(d.r) &&
+                  d.sx + d.r >= 0 && d.sx - d.r <= scene_width && d.sy + d.r >= 0 && d.sy - d.r <= height;
+      if (!d.visible) continue;
+      int tx0, tx1, ty0, ty1;
+      d.tiles(bins.tiles_x, bins.tiles_y, tx0, tx1, ty0, ty1);
+      for (int ty = ty0; ty <= ty1; ++ty)
+        for (int tx = tx0; tx <= tx1; ++tx) ++hist[ty * bins.tiles_x + tx];
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t running = 0;  // exclusive prefix sum, tile-major, thread-minor
+      for (int tile = 0; tile < tile_count; ++tile) {
+        bins.start[tile] = running;
+        for (int u = 0; u < team; ++u) running += std::exchange(histogram[u][tile], running);
+      }
+      bins.start[tile_count] = running;
+      bins.particles.resize(running);
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      if (!discs[i].visible) continue;
+      int tx0, tx1, ty0, ty1;
+      discs[i].tiles(bins.tiles_x, bins.tiles_y, tx0, tx1, ty0, ty1);
+      for (int ty = ty0; ty <= ty1; ++ty)
+        for (int tx = tx0; tx <= tx1; ++tx)
+          bins.particles[hist[ty * bins.tiles_x + tx]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+  return bins;
+}
+
+// Renders one tile, which owns its pixels: a z-buffer pass over its discs (the depth of the
+// sphere's front surface at each pixel centre), then shading of the nearest sphere per pixel.
+void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs, float sphere_radius,
+                 const Rgb& background, int width, std::vector<unsigned char>& rgb, std::vector<float>& depth) {
+  const int x0 = tile % bins.tiles_x * kTile, y0 = tile / bins.tiles_x * kTile;
+  const int x1 = std::min(bins.area_width, x0 + kTile), y1 = std::min(bins.area_height, y0 + kTile);
+  float zbuf[kTile * kTile];
+  std::uint32_t owner[kTile * kTile];
+  std::fill(std::begin(zbuf), std::end(zbuf), std::numeric_limits<float>::infinity());
+  std::fill(std::begin(owner), std::end(owner), kNoParticle);
+  for (std::size_t s = bins.start[tile]; s < bins.start[tile + 1]; ++s) {
+    const std::uint32_t i = bins.particles[s];
+    const Disc& d = discs[i];
+    const float inv_r2 = 1.0f / (d.r * d.r);
+    // The pixels whose centres (p + 0.5) may lie inside the disc, within the tile.
+    auto first = [](float lo, int begin, int end) {
+      return int(std::clamp(std::ceil(lo - 0.5f), float(begin), float(end)));
+    };
+    const int row0 = first(d.sy - d.r, y0, y1), row1 = first(d.sy + d.r, y0, y1);
+    const int col0 = first(d.sx - d.r, x0, x1), col1 = first(d.sx + d.r, x0, x1);
+    for (int py = row0; py < row1; ++py) {
+      const float dy = py + 0.5f - d.sy;
+      for (int px = col0; px < col1; ++px) {
+        const float dx = px + 0.5f - d.sx;
+        const float q = (dx * dx + dy * dy) * inv_r2;
+        if (q >= 1.0f) continue;
+        const float surface = d.depth - sphere_radius * std::sqrt(1.0f - q);
+        const int k = (py - y0) * kTile + (px - x0);
+        // A tie keeps the smaller index, already there as the list is in ascending order.
+        if (surface < zbuf[k]) zbuf[k] = surface, owner[k] = i;
+      }
+    }
+  }
+  const float* light = SphereShading::light;
+  const float half_norm = std::sqrt(light[0] * light[0] + light[1] * light[1] + (light[2] + 1) * (light[2] + 1));
+  const float half[3] = {light[0] / half_norm, light[1] / half_norm, (light[2] + 1) / half_norm};
+  for (int py = y0; py < y1; ++py)
+    for (int px = x0; px < x1; ++px) {
+      const int k = (py - y0) * kTile + (px - x0);
+      unsigned char* out = &rgb[(static_cast<std::size_t>(py) * width + px) * 3];
+      depth[static_cast<std::size_t>(py) * width + px] = zbuf[k];
+      if (owner[k] == kNoParticle) {
+        std::copy(background.begin(), background.end(), out);
+        continue;
+      }
+      const Disc& d = discs[owner[k]];
+      // The sphere's normal here, in camera coordinates with z toward the viewer.
+      const float nx = (px + 0.5f - d.sx) / d.r, ny = -(py + 0.5f - d.sy) / d.r;
+      const float nz = std::sqrt(std::max(0.0f, 1.0f - nx * nx - ny * ny));
+      const float lambert = std::max(0.0f, nx * light[0] + ny * light[1] + nz * light[2]);
+      float highlight = std::max(0.0f, nx * half[0] + ny * half[1] + nz * half[2]);
+      for (int power = 1; power < SphereShading::shininess; power *= 2) highlight *= highlight;
+      const float lit = SphereShading::ambient + SphereShading::diffuse * lambert;
+      const float shine = 255.0f * SphereShading::specular * highlight;
+      for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<unsigned char>(std::min(255.0f, d.colour[c] * lit + shine + 0.5f));
+    }
+}
+
+// Draws the domain box's edges as antialiased lines over the rendered particles, hidden where a
+// particle's surface is nearer than the edge (depth holds the particles' depth per pixel).
+void draw_box(const Camera& cam, const Domain& domain, const std::vector<float>& depth, int scene_width,
+              std::vector<unsigned char>& rgb, int W, int H, const Rgb& colour) {
+  const double half_width = 0.5 * std::max(1.0, H / 600.0);
+  auto corner = [&](int k) {
+    return Vec3{domain.lo[0] + (k & 1) * domain.extent(0), domain.lo[1] + (k >> 1 & 1) * domain.extent(1),
+                domain.lo[2] + (k >> 2 & 1) * domain.extent(2)};
+  };
+  for (int a = 0; a < 8; ++a)
+    for (int bit = 1; bit < 8; bit <<= 1) {
+      if (a & bit) continue;  // each edge once: from the corner without the bit to the one with it
+      Vec3 p = cam.to_camera(corner(a)), q = cam.to_camera(corner(a | bit));
+      if (p[2] < cam.near && q[2] < cam.near) continue;
+      if (p[2] < cam.near || q[2] < cam.near) {  // clip off the part behind the camera
+        Vec3& behind = p[2] < cam.near ? p : q;
+        const Vec3 front = p[2] < cam.near ? q : p;
+        const double s = (cam.near - front[2]) / (behind[2] - front[2]);
+        for (int c = 0; c < 3; ++c) behind[c] = front[c] + s * (behind[c] - front[c]);
+      }
+      const double x0 = cam.screen_x(p), y0 = cam.screen_y(p), x1 = cam.screen_x(q), y1 = cam.screen_y(q);
+      const double dx = x1 - x0, dy = y1 - y0, length = std::hypot(dx, dy);
+      if (!(length > 1e-9) || !std::isfinite(length)) continue;
+      // Step one pixel at a time along the major axis, covering the pixels across the line.
+      const bool steep = std::fabs(dy) > std::fabs(dx);
+      const double m0 = steep ? y0 : x0, m1 = steep ? y1 : x1, n0 = steep ? x0 : y0, n1 = steep ? x1 : y1;
+      const double major_size = steep ? H : scene_width, minor_size = steep ? scene_width : H;
+      auto pixel = [](double v, double size) { return int(std::clamp(v, -1.0, size)); };
+      const int first = pixel(std::ceil(std::min(m0, m1) - 0.5), major_size);
+      const int last = pixel(std::floor(std::max(m0, m1) - 0.5), major_size - 1);
+      for (int m = std::max(first, 0); m <= last; ++m) {
+        const double s = (m + 0.5 - m0) / (m1 - m0);  // where on the edge, on the screen
+        const double across = n0 + s * (n1 - n0);
+        const double edge_depth = 1 / ((1 - s) / p[2] + s / q[2]);  // 1/depth is linear on the screen
+        const int k1 = pixel(std::ceil(across + half_width + 1), minor_size - 1);
+        for (int k = std::max(0, pixel(std::floor(across - half_width - 1), minor_size)); k <= k1; ++k) {
+          const int px = steep ? k : m, py = steep ? m : k;
+          const double distance = std::fabs((px + 0.5 - x0) * dy - (py + 0.5 - y0) * dx) / length;
+          const double coverage = std::clamp(half_width + 0.5 - distance, 0.0, 1.0);
+          if (coverage > 0 && edge_depth <= depth[static_cast<std::size_t>(py) * W + px])
+            blend(rgb, W, H, px, py, colour, static_cast<float>(coverage));
+        }
+      }
+    }
+}
+
+void draw_colorbar(const Layout& l, const Colormap& colormap, const TextRenderer& font, double vmin, double vmax,
+                   const std::string& label, std::vector<unsigned char>& rgb, int W, int H, const Rgb& ink) {
+  for (int row = 0; row < l.bar_h; ++row) {  // top row is vmax
+    const Rgb c = colormap(1.0 - static_cast<double>(row) / std::max(1, l.bar_h - 1));
+    for (int col = 0; col < l.bar_w; ++col) blend(rgb, W, H, l.bar_x + col, l.bar_y + row, c, 1.0f);
+  }
+  for (int k = -1; k <= l.bar_w; ++k)  // a thin frame
+    blend(rgb, W, H, l.bar_x + k, l.bar_y - 1, ink, 1.0f), blend(rgb, W, H, l.bar_x + k, l.bar_y + l.bar_h, ink, 1.0f);
+  for (int row = 0; row < l.bar_h; ++row)
+    blend(rgb, W, H, l.bar_x - 1, l.bar_y + row, ink, 1.0f),
+        blend(rgb, W, H, l.bar_x + l.bar_w, l.bar_y + row, ink, 1.0f);
+  for (double value : colorbar_ticks(vmin, vmax)) {
+    const int y = l.bar_y + static_cast<int>(std::lround((vmax - value) / (vmax - vmin) * (l.bar_h - 1)));
+    for (int k = 0; k < l.tick_length; ++k) blend(rgb, W, H, l.bar_x + l.bar_w + k, y, ink, 1.0f);
+    const std::string text = fmt::format("{:.3g}", value == 0 ? 0.0 : value);  // no "-0"
+    font.draw(rgb, W, H, l.bar_x + l.bar_w + l.tick_length + font.pixels() / 3, y + font.pixels() * 3 / 8, text, ink);
+  }
+  if (!label.empty()) {  // centred over the bar, kept inside the image
+    const int text_width = font.width(label);
+    const int x = std::max(0, std::min(l.bar_x + l.bar_w / 2 - text_width / 2, W - text_width - 2));
+    font.draw(rgb, W, H, x, l.bar_y - font.pixels() * 3 / 4, label, ink);
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+ImageRenderer::ImageRenderer(const ImageSpec& spec) : spec_(spec), colormap_(spec.colormap) {
+  if (spec.width < 16 || spec.width > 8192)
+    throw Error(fmt::format("image: width must be 16..8192 pixels, got {}", spec.width));
+  if (spec.height < 16 || spec.height > 8192)
+    throw Error(fmt::format("image: height must be 16..8192 pixels, got {}", spec.height));
+  if (!(spec.zoom > 0) || !std::isfinite(spec.zoom))
+    throw Error(fmt::format("image: zoom must be > 0, got {}", spec.zoom));
+  if (!(spec.radius > 0) || !std::isfinite(spec.radius))
+    throw Error(fmt::format("image: radius (of the particle spheres, m) must be > 0, got {}", spec.radius));
+  if (!finite(spec.direction) || norm(spec.direction) == 0)
+    throw Error("image: direction must be a finite non-zero vector");
+  if (!finite(spec.up) || norm(spec.up) == 0) throw Error("image: up must be a finite non-zero vector");
+  // Parallel (the sine of the angle below 1e-3) leaves the camera's roll undefined.
+  // (With a camera position, the direction is from it to the centre, checked when drawing.)
+  if (!spec.eye && norm(cross(spec.direction, spec.up)) <= 1e-3 * norm(spec.direction) * norm(spec.up))
+    throw Error("image: direction must not be parallel to up");
+  if (spec.center && !finite(*spec.center)) throw Error("image: center must be finite");
+  if (spec.eye && !finite(*spec.eye)) throw Error("image: the camera position must be finite");
+  font_ = std::make_shared<const TextRenderer>(std::clamp(spec.height / 36, 10, 96));
+}
+
+void ImageRenderer::render(const Domain& domain, const real* x, const real* y, const real* z, const double* value,
+                           std::size_t n, double vmin, double vmax, const std::string& caption,
+                           std::vector<unsigned char>& rgb) const {
+  if (!(std::isfinite(vmin) && std::isfinite(vmax) && vmin < vmax && std::isfinite(vmax - vmin)))
+    throw Error(fmt::format("image: the colour range needs finite vmin < vmax, got {} and {}", vmin, vmax));
+  if (n >= kNoParticle) throw Error(fmt::format("image: cannot render {} particles (at most 2^32 - 2)", n));
+  const int W = spec_.width, H = spec_.height;
+  const Layout layout = make_layout(spec_, *font_);
+  const Camera cam(spec_, domain, layout.scene_width);
+
+  // 1. Particles to discs on the screen, binned into tiles.
+  std::vector<Disc> discs;
+  const TileBins bins =
+      project_and_bin(cam, colormap_, spec_.radius, layout.scene_width, H, x, y, z, value, n, vmin, vmax, discs);
+
+  // 2. The scene area, tile by tile in parallel; then the colour bar strip's background.
+  rgb.resize(static_cast<std::size_t>(W) * H * 3);
+  std::vector<float> depth(static_cast<std::size_t>(W) * H, std::numeric_limits<float>::infinity());
+  const int tile_count = bins.tiles_x * bins.tiles_y;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int tile = 0; tile < tile_count; ++tile)
+    render_tile(tile, bins, discs, static_cast<float>(spec_.radius), spec_.background, W, rgb, depth);
+  for (int py = 0; py < H; ++py)
+    for (int px = layout.scene_width; px < W; ++px)
+      std::copy(spec_.background.begin(), spec_.background.end(), &rgb[(static_cast<std::size_t>(py) * W + px) * 3]);
+
+  // 3. Overlays, serial and in a fixed order: box edges, colour bar, caption.
+  const Rgb ink = ink_for(spec_.background);
+  if (spec_.draw_box) draw_box(cam, domain, depth, layout.scene_width, rgb, W, H, ink);
+  if (spec_.colorbar) draw_colorbar(layout, colormap_, *font_, vmin, vmax, spec_.label, rgb, W, H, ink);
+  if (!caption.empty()) font_->draw(rgb, W, H, font_->pixels() * 2 / 3, font_->pixels() / 2 + font_->ascent(), caption, ink);
+}
+
+void write_png(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
+  if (width <= 0 || height <= 0 || rgb.size() != static_cast<std::size_t>(width) * height * 3)
+    throw Error(fmt::format("image: cannot write {}: the data are not a {}x{} RGB image", path, width, height));
+  if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3))
+    throw Error(fmt::format("image: cannot write the PNG file {}", path));
+}
+
+}  // namespace pbf

@@ -1,0 +1,83 @@
+#pragma once
+// A software renderer that draws particles as shaded spheres into an RGB image, with the
+// domain box, a colour bar and a caption, for image dumps. No GPU, no display.
+//
+// The camera is a perspective one with a 30 degree vertical field of view, looking along
+// `direction` at `center`, from the distance at which the domain's bounding sphere fits the
+// scene area (the image less the colour bar strip) with a small margin; `zoom` narrows the
+// field of view (a lens zoom: the camera does not move, so it stays outside the box).
+//
+// Rendering is parallel (OpenMP) and deterministic: the same input gives the same bytes at
+// any thread count. Each pixel shows the particle whose sphere surface is nearest there, the
+// smaller particle index on a tie. Box edges are depth-tested against the particles' sphere
+// surfaces, so edges behind the fluid are hidden and edges in front of it drawn.
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/domain.hpp"
+#include "engine/render/colormap.hpp"
+#include "engine/render/image_text.hpp"
+#include "engine/core/real.hpp"
+
+namespace pbf {
+
+struct ImageSpec {
+  int width = 800, height = 600;  // pixels
+  std::array<double, 3> direction{-1, -2,
+                                  -1};  // view direction: from the camera toward the look-at point (need not be unit)
+  std::array<double, 3> up{0, 0, 1};
+  std::optional<std::array<double, 3>> center;  // look-at point; default the domain centre
+  std::optional<std::array<double, 3>> eye;     // camera position; default: back along direction, the domain in view
+  double zoom = 1.0;                 // 1: the whole domain box fits in the image with a small margin; 2: twice as large
+  double radius = 0;                 // sphere radius in metres drawn per particle; must be set (> 0)
+  std::string colormap = "viridis";  // Colormap::names()
+  std::string label;                 // colour bar title, e.g. "speed (m/s)"
+  bool draw_box = true;              // draw the domain box edges as lines
+  bool colorbar = true;
+  std::array<unsigned char, 3> background{255, 255, 255};
+};
+
+// The sphere shading, Blinn-Phong in camera coordinates (x right, y up, z toward the
+// viewer): colour = base * (ambient + diffuse * max(0, n.L)) + 255 * specular * max(0, n.H)^32,
+// with the light L slightly above and left of the camera and H the half vector of L and the
+// view direction (0, 0, 1). Public so that tests can predict a pixel.
+struct SphereShading {
+  static constexpr float light[3] = {-0.3f, 0.4f, 0.866025f};  // unit length
+  static constexpr float ambient = 0.3f, diffuse = 0.7f, specular = 0.25f;
+  static constexpr int shininess = 32;  // a power of two: computed by squaring
+};
+
+class ImageRenderer {
+ public:
+  // Validates the spec (width and height 16..8192, zoom > 0, radius > 0, direction non-zero
+  // and not parallel to up, a known colour map) and loads the font
+  // /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf (Debian package fonts-dejavu-core);
+  // throws pbf::Error naming the parameter or the file.
+  explicit ImageRenderer(const ImageSpec& spec);
+
+  // Renders into rgb (resized to width*height*3, row-major, top row first). value[i] is the
+  // colour field of particle i, mapped linearly from [vmin, vmax] (vmin < vmax, both finite,
+  // else pbf::Error) to the colour map; values outside clamp, NaN draws grey. caption is drawn
+  // at the top left (e.g. "t = 1.250 s"). Labels are UTF-8.
+  void render(const Domain& domain, const real* x, const real* y, const real* z, const double* value, std::size_t n,
+              double vmin, double vmax, const std::string& caption, std::vector<unsigned char>& rgb) const;
+
+  int width() const { return spec_.width; }
+  int height() const { return spec_.height; }
+  const ImageSpec& spec() const { return spec_; }
+
+ private:
+  ImageSpec spec_;
+  Colormap colormap_;
+  std::shared_ptr<const TextRenderer> font_;  // shared: copies of a renderer share the font
+};
+
+// Writes an RGB image (width*height*3 bytes, top row first) as PNG via stb_image_write;
+// throws pbf::Error naming the path on failure.
+void write_png(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);
+
+}  // namespace pbf

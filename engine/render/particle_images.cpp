@@ -1,0 +1,100 @@
+#include "engine/render/particle_images.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+#include "engine/sph/mass.hpp"
+#include "engine/core/simulation.hpp"
+
+namespace pbf {
+
+std::vector<ParamSpec> ParticleImages::params() {
+  std::string maps;
+  for (const auto& m : Colormap::names()) maps += (maps.empty() ? "" : ", ") + m;
+  return {
+      {"color", ParamType::String, std::string("speed"), "",
+       "field that sets the colour (a dump field; a vector field is coloured by its magnitude)"},
+      {"colormap", ParamType::String, std::string("viridis"), "", "colour map: " + maps},
+      {"min", ParamType::Real, 0.0, "field unit", "value at the bottom of the colour scale (min = max: each frame's range)"},
+      {"max", ParamType::Real, 0.0, "field unit", "value at the top of the colour scale"},
+      {"width", ParamType::Integer, std::int64_t{800}, "pixels", "image width"},
+      {"height", ParamType::Integer, std::int64_t{600}, "pixels", "image height"},
+      {"direction", ParamType::Vector3, Vec3{-1, -2, -1}, "", "view direction, from the camera toward the centre"},
+      {"up", ParamType::Vector3, Vec3{0, 0, 1}, "", "the direction that points up in the image"},
+      {"center", ParamType::Vector3, std::nullopt, "m", "point the camera looks at (default: the domain's centre)", true},
+      {"position", ParamType::Vector3, std::nullopt, "m",
+       "camera position, looking at the centre ('direction' is then unused; default: back along 'direction', "
+       "far enough to see the whole domain)",
+       true},
+      {"zoom", ParamType::Real, 1.0, "", "magnification; 1 shows the whole domain"},
+      {"radius", ParamType::Real, 0.0, "m", "sphere radius drawn per particle (0: 0.55 of the particle spacing)"},
+      {"box", ParamType::Bool, true, "", "draw the domain's edges"},
+      {"colorbar", ParamType::Bool, true, "", "draw the labelled colour bar"}};
+}
+
+ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")}), min_(p.real("min")), max_(p.real("max")) {
+  if (min_ > max_) throw Error(fmt::format("'min' ({}) must not exceed 'max' ({})", min_, max_));
+  if (p.integer("width") < 16 || p.integer("width") > 8192 || p.integer("height") < 16 || p.integer("height") > 8192)
+    throw Error("'width' and 'height' must be 16 to 8192 pixels");
+  spec_.width = static_cast<int>(p.integer("width"));
+  spec_.height = static_cast<int>(p.integer("height"));
+  spec_.direction = p.vec3("direction");
+  spec_.up = p.vec3("up");
+  if (p.has("center")) spec_.center = p.vec3("center");
+  if (p.has("position")) spec_.eye = p.vec3("position");
+  spec_.zoom = p.real("zoom");
+  spec_.radius = p.real("radius");
+  if (spec_.radius < 0) throw Error("'radius' must be >= 0");
+  spec_.colormap = p.string("colormap");
+  spec_.draw_box = p.boolean("box");
+  spec_.colorbar = p.boolean("colorbar");
+  // A placeholder radius checks every other parameter (and loads the font) now, at pbf.fix.
+  ImageSpec check = spec_;
+  if (check.radius == 0) check.radius = 1;
+  ImageRenderer{check};
+}
+
+void ParticleImages::init(Simulation& sim) {
+  color_.resolve(sim);
+  if (spec_.radius == 0) {
+    spec_.radius = 0.55 * lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+  }
+  const std::string unit = color_.unit(0);
+  spec_.label = color_.components(0) == 1 ? color_.names()[0] : "|" + color_.names()[0] + "|";
+  if (!unit.empty()) spec_.label += " (" + unit + ")";
+  renderer_.emplace(spec_);
+}
+
+const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
+  const std::size_t n = sim.particles().size();
+  color_.gather(sim, 0, values_);
+  DumpFields position(Names{"position"});
+  position.resolve(sim);
+  position.gather(sim, 0, positions_);
+  const int nc = color_.components(0);
+  scalar_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double s = 0;
+    for (int c = 0; c < nc; ++c) s += double(values_[i * nc + c]) * double(values_[i * nc + c]);
+    scalar_[i] = nc == 1 ? double(values_[i]) : std::sqrt(s);
+  }
+  double lo = min_, hi = max_;
+  if (lo == hi) {  // this frame's range
+    lo = INFINITY, hi = -INFINITY;
+    for (double v : scalar_)
+      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    if (!(lo < hi)) {  // one value (or none): a band around it
+      const double centre = std::isfinite(lo) ? lo : 0, half = 0.5 * std::max(std::fabs(centre), 1e-12);
+      lo = centre - half, hi = centre + half;
+    }
+  }
+  std::vector<real> x(n), y(n), z(n);
+  for (std::size_t i = 0; i < n; ++i) x[i] = positions_[3 * i], y[i] = positions_[3 * i + 1], z[i] = positions_[3 * i + 2];
+  renderer_->render(sim.domain(), x.data(), y.data(), z.data(), scalar_.data(), n, lo, hi,
+                    fmt::format("t = {:.3f} s", sim.time()), rgb_);
+  return rgb_;
+}
+
+}  // namespace pbf

@@ -1,0 +1,37 @@
+#pragma once
+// Pictures of the particles for dump/image and dump/movie: the parameters both styles take
+// (colour field and scale, camera, size) and the rendering of the current state.
+#include <string>
+#include <vector>
+
+#include "engine/output/dump_fields.hpp"
+#include "engine/render/image_renderer.hpp"
+#include "engine/registry/params.hpp"
+
+namespace pbf {
+
+class Simulation;
+
+class ParticleImages {
+ public:
+  static std::vector<ParamSpec> params();
+  explicit ParticleImages(const Params& p);
+
+  // In the fix's init: checks the colour field, picks the sphere radius if not given.
+  void init(Simulation& sim);
+  // Renders the current state; the returned buffer is width * height * 3 bytes, RGB.
+  const std::vector<unsigned char>& render(Simulation& sim);
+  int width() const { return spec_.width; }
+  int height() const { return spec_.height; }
+
+ private:
+  ImageSpec spec_;
+  std::optional<ImageRenderer> renderer_;
+  DumpFields color_;
+  double min_, max_;
+  std::vector<real> values_, positions_;
+  std::vector<double> scalar_;
+  std::vector<unsigned char> rgb_;
+};
+
+}  // namespace pbf

@@ -1,0 +1,20 @@
+#pragma once
+// Something besides fluid particles that adds to a particle's density (walls). The
+// density solver adds rho_b(x) to the SPH sum and its gradient to the constraint gradient.
+#include "engine/core/real.hpp"
+
+namespace pbf {
+
+class Simulation;
+
+class DensityBoundary {
+ public:
+  virtual ~DensityBoundary() = default;
+  // Brings constants that depend on the scene (h, rho0, particle mass) up to date; called
+  // before a run and before the engine measures densities.
+  virtual void prepare(const Simulation&) {}
+  // Adds the boundary density at (x, y, z) to `rho` and its gradient to `grad`.
+  virtual void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const = 0;
+};
+
+}  // namespace pbf

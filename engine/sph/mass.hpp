@@ -1,0 +1,40 @@
+#pragma once
+// The mass rule, shared by every solver: particle mass is chosen so that an interior
+// particle (a full neighbourhood) has the rest density, as the original Fortran code
+// rescaled it. One rule for lattices, one for particles read from a file.
+#include <cstddef>
+
+#include "engine/core/domain.hpp"
+#include "engine/sph/kernels.hpp"
+
+namespace pbf {
+
+// rho0 / sum_j W(x_j) over an infinite cubic lattice of the given spacing.
+double lattice_mass(double spacing, const Kernels& kernels, double rest_density);
+
+struct MassEstimate {
+  double mass;
+  std::size_t interior;   // particles with a full neighbourhood used (0: fallback)
+  double spacing;         // median nearest-neighbour distance (fallback rule)
+};
+
+// For particles read from a file: rho0 / mean(sum_j W) over the particles with a full
+// neighbourhood (at least h from every face of the domain, and at least 95% as many
+// neighbours as the best-surrounded such particle, which leaves out the fluid's own free
+// surface); without such particles, rho0 times the cube of the median nearest-neighbour
+// spacing (h/2 for a single particle).
+MassEstimate mass_from_positions(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain,
+                                 const Kernels& kernels, double rest_density);
+
+// The lattice spacing at which `mass` gives an interior particle the rest density.
+double lattice_spacing(double mass, const Kernels& kernels, double rest_density);
+
+// The sum of squared constraint gradients, sum_k |grad_k C_i|^2, of a particle at rest
+// inside an infinite cubic lattice whose spacing gives `mass` the rest density.
+double lattice_gradient_sum(double mass, const Kernels& kernels, double rest_density);
+
+// The density a particle of a lattice's first layer (at spacing/2 from a flat wall) misses:
+// the sum over the lattice sites behind the wall.
+double lattice_wall_density(double mass, const Kernels& kernels, double rest_density);
+
+}  // namespace pbf

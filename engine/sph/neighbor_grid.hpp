@@ -1,0 +1,73 @@
+#pragma once
+// Uniform grid with cells at least h wide, built by a parallel counting sort
+// (per-thread histograms, a prefix sum, a stable scatter: no locks, no atomics), and
+// compressed neighbour lists built from it once per step.
+//
+// Positions outside the domain fall into the edge cells (clamping keeps any two points
+// closer than h in the same or adjacent cells), and the cell count is capped, so memory
+// follows the particle count, not the box volume over h^3. Neighbour order is fixed
+// (the 3 x 3 x 3 cells in a fixed order, ascending index within a cell): the lists, and everything
+// summed over them, are the same at any thread count.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "engine/core/domain.hpp"
+#include "engine/core/real.hpp"
+
+namespace pbf {
+
+class NeighborGrid {
+ public:
+  // Bins particles into cells; afterwards sorted_order() lists particles cell by cell.
+  void bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h);
+  // Builds every particle's list of neighbours j != i with |x_i - x_j|^2 < h^2.
+  void build_lists(const real* x, const real* y, const real* z, double h);
+
+  const std::vector<std::uint32_t>& sorted_order() const { return sorted_; }
+  const std::uint32_t* neighbors(std::size_t i) const { return list_.data() + offset_[i]; }
+  std::uint32_t count(std::size_t i) const { return static_cast<std::uint32_t>(offset_[i + 1] - offset_[i]); }
+  std::size_t particle_count() const { return offset_.empty() ? 0 : offset_.size() - 1; }
+
+  // The prelude of every pair loop: calls visit(j, dx, dy, dz, r2) for each neighbour j of
+  // particle i, in list order, with (dx, dy, dz) = x_i - x_j and r2 its squared length.
+  // Inlined, it compiles to the loop written out by hand.
+  template <class Visit>
+  void for_each_neighbor(std::size_t i, const real* x, const real* y, const real* z, Visit&& visit) const {
+    const std::uint32_t* nb = neighbors(i);
+    for (std::uint32_t k = 0; k < count(i); ++k) {
+      const std::uint32_t j = nb[k];
+      const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
+      visit(j, dx, dy, dz, dx * dx + dy * dy + dz * dz);
+    }
+  }
+
+  std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
+  double cell_size() const { return cell_size_; }
+  double mean_neighbors() const;
+  std::uint32_t max_neighbors() const;
+
+  // Largest number of cells the grid allocates for n particles.
+  static std::size_t max_cells(std::size_t n);
+
+ private:
+  std::size_t cell_of(real x, real y, real z) const;
+
+  double lo_[3] = {0, 0, 0};
+  double cell_size_ = 1;
+  long dims_[3] = {1, 1, 1};
+  std::vector<std::uint32_t> cell_;         // cell of each particle
+  std::vector<std::uint32_t> cell_start_;   // first sorted slot of each cell (ncells + 1)
+  std::vector<std::uint32_t> sorted_;       // particle indices, cell by cell
+  std::vector<std::vector<std::uint32_t>> histogram_;  // per thread, per cell
+  std::vector<std::size_t> offset_;         // list of particle i: list_[offset_[i] .. offset_[i+1])
+  std::vector<std::uint32_t> list_;
+  // Each thread's lists while they are built, one cache line apart: push_back writes the
+  // vector's end pointer, and two threads writing one line would slow each other down.
+  struct alignas(64) ThreadList {
+    std::vector<std::uint32_t> pairs;
+  };
+  std::vector<ThreadList> thread_lists_;
+};
+
+}  // namespace pbf
