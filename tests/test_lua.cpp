@@ -10,9 +10,9 @@ using pbf::test::scenario;
 namespace {
 
 struct Script {
-  std::filesystem::path dir, path;
+  pbf::test::TempDir dir{"lua"};
+  std::filesystem::path path;
   explicit Script(const std::string& body, const std::string& name = "script.lua") {
-    dir = pbf::test::temp_dir("lua");
     path = dir / name;
     pbf::test::write_file(path, body);
   }

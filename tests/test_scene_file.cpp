@@ -14,7 +14,8 @@ namespace {
 const std::string kHeader = "0.002\n0.04\n0.4\n0.01\n0.03\n";
 
 std::string error_of(const std::string& text) {
-  const auto path = test::temp_dir("scene") / "scene.txt";
+  const auto dir = test::temp_dir("scene");
+  const auto path = dir / "scene.txt";
   test::write_file(path, text);
   try {
     read_scene_file(path.string());

@@ -36,14 +36,40 @@ inline Result run_engine(const std::string& args, const std::string& redirect = 
 
 inline std::string scenario(const std::string& name) { return std::string(PBF_SOURCE_DIR) + "/scenarios/" + name; }
 
-// A fresh, empty directory under the system's temporary directory.
-inline std::filesystem::path temp_dir(const std::string& name) {
-  static std::mt19937_64 rng(std::random_device{}());
-  auto dir = std::filesystem::temp_directory_path() / ("pbf-test-" + name + "-" + std::to_string(rng() % 1000000000));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+// A fresh, empty directory under the system's temporary directory ($TMPDIR, else /tmp),
+// removed with everything in it when the TempDir goes out of scope. Not copyable, and not
+// convertible to a path while a temporary, so no test keeps a path to a removed directory.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name) {
+    static std::mt19937_64 rng(std::random_device{}());
+    path_ = std::filesystem::temp_directory_path() / ("pbf-test-" + name + "-" + std::to_string(rng() % 1000000000));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  operator const std::filesystem::path&() const& { return path_; }
+  operator const std::filesystem::path&() const&& = delete;
+  template <class T>
+  std::filesystem::path operator/(const T& child) const& {
+    return path_ / child;
+  }
+  template <class T>
+  std::filesystem::path operator/(const T& child) const&& = delete;
+  std::string string() const& { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline TempDir temp_dir(const std::string& name) { return TempDir(name); }
 
 inline void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
 
