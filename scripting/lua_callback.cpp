@@ -2,8 +2,9 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/simulation.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/simulation.hpp"
+#include "scripting/lua_util.hpp"
 
 namespace pbf::lua {
 
@@ -22,10 +23,12 @@ class LuaCallback : public Fix {
     lua_rawgeti(L_, LUA_REGISTRYINDEX, ref_);
     lua_pushinteger(L_, static_cast<lua_Integer>(sim.step()));
     lua_pushnumber(L_, sim.time());
-    if (lua_pcall(L_, 2, 0, 0) != LUA_OK) {
+    if (lua::pcall(L_, 2, 0) != LUA_OK) {
+      // The message handler has made the error a string that says FILE:LINE (out of memory
+      // aside, where Lua calls no handler).
       std::string message = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "(error object is not a string)";
       lua_pop(L_, 1);
-      throw Error(message, true);  // a Lua error message already says FILE:LINE
+      throw Error(message, true);
     }
   }
 

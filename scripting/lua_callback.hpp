@@ -5,7 +5,7 @@
 #include <lua.hpp>
 #include <memory>
 
-#include "engine/fix.hpp"
+#include "engine/core/fix.hpp"
 
 namespace pbf::lua {
 

@@ -6,8 +6,8 @@
 #include "engine/io/load_particles.hpp"
 #include "engine/io/restart.hpp"
 #include "engine/io/scene_file.hpp"
-#include "engine/lattice.hpp"
-#include "engine/simulation.hpp"
+#include "engine/sph/lattice.hpp"
+#include "engine/core/simulation.hpp"
 #include "scripting/script_state.hpp"
 
 namespace pbf::lua {
@@ -45,12 +45,13 @@ int l_domain(lua_State* L) {
 }
 
 // Getter/setter pairs: pbf.kernel_radius(h) sets, pbf.kernel_radius() reads.
-template <double (Simulation::*Get)() const, void (Simulation::*Set)(double)>
+constexpr char kKernelRadius[] = "pbf.kernel_radius", kTimestep[] = "pbf.timestep", kRestDensity[] = "pbf.rest_density";
+template <double (Simulation::*Get)() const, void (Simulation::*Set)(double), const char* Name>
 int l_setting(lua_State* L) {
   State& S = state(L);
   if (!lua_isnoneornil(L, 1)) {
-    S.not_running("pbf.kernel_radius, pbf.timestep and pbf.rest_density");
-    (S.sim.*Set)(lua::number(L, 1, "the value"));
+    S.not_running(Name);
+    (S.sim.*Set)(lua::number(L, 1, fmt::format("{}: the value", Name).c_str()));
   }
   lua_pushnumber(L, (S.sim.*Get)());
   return 1;
@@ -81,7 +82,7 @@ int l_read_scene(lua_State* L) {
   S.not_running("pbf.read_scene");
   if (S.sim.particles().size() > 0)
     throw Error("pbf.read_scene: the scene file sets the domain, so read it before creating any particle");
-  const SceneFile scene = read_scene_file(lua::string(L, 1, "pbf.read_scene: the path"));
+  const SceneFile scene = read_scene_file(lua::path(L, 1, "pbf.read_scene: the path"));
   const double mass = load_scene(S.sim, scene);
   lua_createtable(L, 0, 7);
   const std::pair<const char*, double> fields[] = {{"dt", scene.dt},         {"h", scene.h},
@@ -99,7 +100,7 @@ int l_read_scene(lua_State* L) {
 int l_read_particles(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.read_particles");
-  const std::string path = lua::string(L, 1, "pbf.read_particles: the path");
+  const std::string path = lua::path(L, 1, "pbf.read_particles: the path");
   const LoadedParticles loaded = load_particle_file(S.sim, path);
   if (!loaded.ignored.empty()) {
     std::string names;
@@ -131,7 +132,7 @@ void push_restart_summary(lua_State* L, const RestartSummary& r) {
 int l_write_restart(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.write_restart");
-  const std::string path = lua::string(L, 1, "pbf.write_restart: the path");
+  const std::string path = lua::path(L, 1, "pbf.write_restart: the path");
   if (S.sim.particles().size() == 0) throw Error("pbf.write_restart: there are no particles to save");
   push_restart_summary(L, write_restart(S.sim, path));
   return 1;
@@ -142,7 +143,7 @@ int l_read_restart(lua_State* L) {
   S.not_running("pbf.read_restart");
   if (S.sim.particles().size() > 0)
     throw Error("pbf.read_restart replaces the scene: call it before creating any particle");
-  push_restart_summary(L, read_restart(S.sim, lua::string(L, 1, "pbf.read_restart: the path")));
+  push_restart_summary(L, read_restart(S.sim, lua::path(L, 1, "pbf.read_restart: the path")));
   return 1;
 }
 
@@ -150,9 +151,9 @@ int l_read_restart(lua_State* L) {
 
 std::vector<luaL_Reg> scene_functions() {
   return {{"domain", guarded<l_domain>},
-          {"kernel_radius", guarded<l_setting<&Simulation::kernel_radius, &Simulation::set_kernel_radius>>},
-          {"timestep", guarded<l_setting<&Simulation::timestep, &Simulation::set_timestep>>},
-          {"rest_density", guarded<l_setting<&Simulation::rest_density, &Simulation::set_rest_density>>},
+          {"kernel_radius", guarded<l_setting<&Simulation::kernel_radius, &Simulation::set_kernel_radius, kKernelRadius>>},
+          {"timestep", guarded<l_setting<&Simulation::timestep, &Simulation::set_timestep, kTimestep>>},
+          {"rest_density", guarded<l_setting<&Simulation::rest_density, &Simulation::set_rest_density, kRestDensity>>},
           {"lattice", guarded<l_lattice>},
           {"read_scene", guarded<l_read_scene>},
           {"read_particles", guarded<l_read_particles>},

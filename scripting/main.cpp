@@ -1,21 +1,30 @@
 // pbfengine: the command line.
-//   pbfengine run FILE.lua [-v NAME=VALUE]... [--threads N] [--log-level LEVEL]
+//   pbfengine run FILE.lua [-v NAME=VALUE]... [--threads N] [--log FILE|none] [--log-level LEVEL]
 //   pbfengine help [STYLE] [--markdown]
 //   pbfengine --version
 // Exit codes: 0 success; 1 an error in the script, a scene file, a parameter or the run
-// (one line on stderr, "FILE:LINE: message"); 2 a bad command line; 130 a run stopped by
-// Ctrl-C after writing a restart (named on stderr).
+// (one line on stderr, "FILE:LINE: message"); 2 a bad command line (one line on stderr,
+// or the usage when no command is given); 130 a run stopped by Ctrl-C after writing a
+// restart (named on stderr).
+// What a run prints also goes to a log file (log.pbfengine unless --log says otherwise).
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <mutex>
 #include <omp.h>
 #include <spdlog/pattern_formatter.h>
+#include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include "engine/error.hpp"
-#include "engine/interrupt.hpp"
-#include "engine/simulation.hpp"
-#include "engine/style_registry.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/interrupt.hpp"
+#include "engine/core/names.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/registry/style_registry.hpp"
+#include "scripting/log_file.hpp"
 #include "scripting/script.hpp"
 
 namespace {
@@ -35,8 +44,21 @@ class LevelPrefix : public spdlog::custom_flag_formatter {
   std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<LevelPrefix>(); }
 };
 
+// The log file's copy of every line the logger prints on stdout, formatted the same way.
+class LogFileSink : public spdlog::sinks::base_sink<std::mutex> {
+ protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override {
+    spdlog::memory_buf_t line;
+    formatter_->format(msg, line);
+    pbf::log_file::write({line.data(), line.size()});
+  }
+  void flush_() override {}  // log_file::write flushes every line
+};
+
 void setup_logging(const std::string& level) {
-  auto logger = spdlog::stdout_logger_mt("pbfengine");
+  std::vector<spdlog::sink_ptr> sinks = {std::make_shared<spdlog::sinks::stdout_sink_mt>(),
+                                         std::make_shared<LogFileSink>()};
+  auto logger = std::make_shared<spdlog::logger>("pbfengine", sinks.begin(), sinks.end());
   auto formatter = std::make_unique<spdlog::pattern_formatter>();
   formatter->add_flag<LevelPrefix>('*').set_pattern("%*%v");
   logger->set_formatter(std::move(formatter));
@@ -45,16 +67,63 @@ void setup_logging(const std::string& level) {
   spdlog::set_default_logger(logger);
 }
 
-int run_script(const std::string& file, const std::vector<std::string>& assignments) {
-  std::vector<std::pair<std::string, std::string>> variables;
-  for (const auto& a : assignments) {
-    const auto eq = a.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      std::fprintf(stderr, "pbfengine: -v expects NAME=VALUE, got '%s'\n", a.c_str());
-      return 2;
-    }
-    variables.emplace_back(a.substr(0, eq), a.substr(eq + 1));
+// A bad command line: one line on stderr, exit code 2.
+int command_line_error(const std::string& message) {
+  std::fprintf(stderr, "pbfengine: %s\n", message.c_str());
+  return 2;
+}
+
+// The end of a failed run (an error, Ctrl-C): one line on stderr, and in the log.
+void report(const std::string& message) {
+  std::fflush(stdout);  // what the run printed comes first
+  std::fprintf(stderr, "%s\n", message.c_str());
+  pbf::log_file::write(message + "\n");
+}
+
+// The most OpenMP threads a run may use: 4 per hardware thread, enough to test a run
+// oversubscribed. More only slows a run (its threads take turns on the cores), and a very
+// large count crashes the OpenMP runtime, which cannot start that many threads.
+int thread_limit() { return 4 * omp_get_num_procs(); }
+
+std::string thread_range() {
+  return fmt::format("from 1 to {} (this machine runs {} hardware threads)", thread_limit(), omp_get_num_procs());
+}
+
+// --threads N: a whole number in 1 .. thread_limit(); nothing when the text is not one.
+std::optional<int> parse_threads(const std::string& text) {
+  if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos) return {};
+  const int n = std::stoi(text);  // at most 9 digits: fits an int
+  if (n < 1 || n > thread_limit()) return {};
+  return n;
+}
+
+// Now, local time, in ISO 8601: 2026-11-21T14:05:09+01:00.
+std::string iso8601_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char text[64];
+  std::string s(text, std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S%z", &local));
+  if (s.size() > 5) s.insert(s.size() - 2, ":");  // strftime's +0100 is ISO 8601's +01:00
+  return s;
+}
+
+// The command line as a shell would take it back: words with other than plain characters
+// in single quotes.
+std::string command_line(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) {
+    const std::string word = argv[i];
+    const bool plain = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                               "0123456789_-+=/.,:@%") == std::string::npos;
+    std::string quoted = "'";
+    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += (i ? " " : "") + (plain ? word : quoted + "'");
   }
+  return line;
+}
+
+int run_script(const std::string& file, const std::vector<std::pair<std::string, std::string>>& variables) {
   try {
     pbf::Simulation sim;
     pbf::Script script(sim);
@@ -63,12 +132,10 @@ int run_script(const std::string& file, const std::vector<std::string>& assignme
     for (const auto& name : script.unread_variables())
       spdlog::warn("variable '{}' given with -v was never read by {}", name, file);
   } catch (const pbf::Interrupted& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "%s\n", e.what());
+    report(e.what());
     return 130;  // the shell's code for a process ended by SIGINT
   } catch (const std::exception& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "%s\n", e.what());
+    report(e.what());
     return 1;
   }
   return 0;
@@ -77,17 +144,19 @@ int run_script(const std::string& file, const std::vector<std::string>& assignme
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pbfengine: a scriptable Position Based Fluids engine"};
+  CLI::App app{"pbfengine: a scriptable Position Based Fluids engine", "pbfengine"};
   app.set_version_flag("--version", std::string("pbfengine ") + PBF_VERSION);
   app.require_subcommand(1);
 
   auto* run = app.add_subcommand("run", "run a Lua scenario script");
-  std::string file, level = "info";
+  std::string file, level = "info", threads_text, log_path = "log.pbfengine";
   std::vector<std::string> assignments;
-  int threads = 0;
   run->add_option("FILE", file, "the scenario script (.lua)")->required();
   run->add_option("-v,--var", assignments, "set var.NAME in the script (repeatable)")->allow_extra_args(false);
-  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  run->add_option("--threads", threads_text, "OpenMP threads, 1 to 4 x the hardware threads (default: all cores)")
+      ->type_name("N");
+  run->add_option("--log", log_path, "copy what the run prints into this file, or 'none' (default: log.pbfengine)")
+      ->type_name("FILE");
   run->add_option("--log-level", level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
 
@@ -97,11 +166,23 @@ int main(int argc, char** argv) {
   help->add_option("STYLE", style, "a fix or compute style");
   help->add_flag("--markdown", markdown, "the scripting reference of every style, as Markdown");
 
+  // Before CLI11, which answers both of these with "A subcommand is required".
+  if (argc < 2) {
+    std::fputs(app.help().c_str(), stderr);
+    return 2;
+  }
+  std::vector<std::string> commands;
+  for (const auto* sub : app.get_subcommands([](CLI::App*) { return true; })) commands.push_back(sub->get_name());
+  if (argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end())
+    return command_line_error(fmt::format("unknown command '{}'{}; the commands are {} (pbfengine --help says more)",
+                                          argv[1], pbf::did_you_mean(argv[1], commands), fmt::join(commands, ", ")));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    const std::string command = *run ? "pbfengine run" : *help ? "pbfengine help" : "pbfengine";
+    return command_line_error(fmt::format("{} ({} --help lists the options)", e.what(), command));
   }
 
   if (*help) {
@@ -124,7 +205,52 @@ int main(int argc, char** argv) {
     }
   }
 
+  // The whole command line is checked before anything runs or the log is opened.
+  std::vector<std::pair<std::string, std::string>> variables;
+  for (const auto& a : assignments) {
+    const auto eq = a.find('=');
+    if (eq == std::string::npos || eq == 0) return command_line_error(fmt::format("-v expects NAME=VALUE, got '{}'", a));
+    variables.emplace_back(a.substr(0, eq), a.substr(eq + 1));
+  }
+  int threads = omp_get_max_threads();  // OpenMP's default: OMP_NUM_THREADS, else every core
+  if (run->count("--threads")) {
+    const auto n = parse_threads(threads_text);
+    if (!n)
+      return command_line_error(
+          fmt::format("--threads must be a whole number {}, got '{}'", thread_range(), threads_text));
+    threads = *n;
+  } else if (threads > thread_limit()) {
+    return command_line_error(fmt::format("OMP_NUM_THREADS asks for {} threads; it must be {}, or give --threads",
+                                          threads, thread_range()));
+  }
+  if (log_path.empty()) return command_line_error("--log needs a file name, or 'none' for no log");
+  // Opening the log truncates it: never the script (compared as absolute paths with links
+  // resolved, as either may not exist yet).
+  const auto resolved = [](const std::string& path) {
+    std::error_code ec;
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+  };
+  if (log_path != "none" && resolved(log_path) == resolved(file))
+    return command_line_error(fmt::format("the log file '{}' is the script itself; choose another with --log", log_path));
+
+  // A write past the file-size limit (ulimit -f, a full quota) would kill the process with
+  // SIGXFSZ; ignored, the write fails (EFBIG) and the engine reports it, naming the file.
+  std::signal(SIGXFSZ, SIG_IGN);
   setup_logging(level);
-  if (threads > 0) omp_set_num_threads(threads);
-  return run_script(file, assignments);
+  if (log_path != "none") {
+    const std::string why = pbf::log_file::open(log_path);
+    if (!why.empty())
+      std::fprintf(stderr, "warning: cannot open the log file '%s' (%s); the run goes on without a log\n",
+                   log_path.c_str(), why.c_str());
+    else
+      pbf::log_file::write(fmt::format("command: {}\nstarted: {}\nversion: pbfengine {}\nthreads: {}\n",
+                                       command_line(argc, argv), iso8601_now(), PBF_VERSION, threads));
+  }
+  omp_set_num_threads(threads);
+  spdlog::info("pbfengine {} on {} OpenMP thread{} (this machine runs {} hardware threads)", PBF_VERSION, threads,
+               threads == 1 ? "" : "s", omp_get_num_procs());
+  const int code = run_script(file, variables);
+  if (!pbf::log_file::close())
+    std::fprintf(stderr, "warning: writing the log file '%s' failed; it is incomplete\n", log_path.c_str());
+  return code;
 }

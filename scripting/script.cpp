@@ -2,11 +2,16 @@
 // and pushes plain Lua values back. Engine errors become one Lua error "FILE:LINE: message".
 #include "scripting/script.hpp"
 
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
+#include <sstream>
 
-#include "engine/simulation.hpp"
-#include "engine/style_registry.hpp"
+#include "engine/core/names.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/registry/style_registry.hpp"
+#include "scripting/log_file.hpp"
 #include "scripting/lua_callback.hpp"
 #include "scripting/script_state.hpp"
 
@@ -17,6 +22,38 @@ namespace {
 using lua::state;
 using lua::table_arg;
 using State = Script::State;
+
+// Hands the script to lua_load one line at a time, so that the line the parser was reading
+// is known when it fails without naming one. Prepares the text as luaL_loadfile does: a
+// UTF-8 byte-order mark is dropped, and a first line starting with '#' (a Unix "#!" line)
+// is emptied, its newline kept so that line numbers stay right.
+class ScriptReader {
+ public:
+  explicit ScriptReader(std::string text) : text_(std::move(text)) {
+    if (text_.rfind("\xEF\xBB\xBF", 0) == 0) text_.erase(0, 3);
+    if (!text_.empty() && text_[0] == '#') text_.erase(0, std::min(text_.find('\n'), text_.size()));
+  }
+  static const char* read(lua_State*, void* data, std::size_t* size) {
+    auto& r = *static_cast<ScriptReader*>(data);
+    if (r.pos_ >= r.text_.size()) {
+      *size = 0;
+      return nullptr;
+    }
+    const std::size_t newline = r.text_.find('\n', r.pos_);
+    const std::size_t end = newline == std::string::npos ? r.text_.size() : newline + 1;
+    const char* line = r.text_.data() + r.pos_;
+    *size = end - r.pos_;
+    r.pos_ = end;
+    ++r.line_;
+    return line;
+  }
+  int line() const { return std::max(line_, 1); }
+
+ private:
+  std::string text_;
+  std::size_t pos_ = 0;
+  int line_ = 0;
+};
 
 int l_fix(lua_State* L) {
   State& S = state(L);
@@ -61,7 +98,7 @@ int l_value(lua_State* L) {
   std::vector<double> v;
   if (c->per_particle()) {
     c->evaluate_per_particle(S.sim, v);
-    lua_createtable(L, static_cast<int>(v.size()), 0);
+    lua_createtable(L, lua::size_hint(v.size()), 0);
     for (std::size_t i = 0; i < v.size(); ++i) {
       lua_pushnumber(L, v[i]);
       lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
@@ -74,7 +111,7 @@ int l_value(lua_State* L) {
     lua_pushnumber(L, v.at(0));
     return 1;
   }
-  lua_createtable(L, 0, static_cast<int>(names.size()));
+  lua_createtable(L, 0, lua::size_hint(names.size()));
   for (std::size_t k = 0; k < names.size(); ++k) {
     lua_pushnumber(L, v.at(k));
     lua_setfield(L, -2, names[k].c_str());
@@ -89,24 +126,32 @@ int l_thermo(lua_State* L) {
   std::int64_t every = 100;
   std::vector<std::string> columns = {"step", "time"};
   std::string csv;
+  const std::vector<std::string> keys = {"every", "columns", "csv"};
   lua_pushnil(L);
   while (lua_next(L, 1)) {
-    const std::string key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "?";
+    if (lua_type(L, -2) != LUA_TSTRING)
+      throw Error(fmt::format("pbf.thermo: every key must be a name (every, columns or csv), got a {}",
+                              luaL_typename(L, -2)));
+    const std::string key = lua_tostring(L, -2);
     if (key == "every") every = lua::integer(L, -1, "pbf.thermo: 'every'");
     else if (key == "csv") csv = lua::string(L, -1, "pbf.thermo: 'csv'");
     else if (key == "columns") {
       if (lua_type(L, -1) != LUA_TTABLE) throw Error("pbf.thermo: 'columns' must be a list of names");
       columns.clear();
-      for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, -1)); ++k) {
-        lua_rawgeti(L, -1, k);
+      const lua_Unsigned n = lua_rawlen(L, -1);
+      for (lua_Unsigned k = 1; k <= n; ++k) {
+        lua_rawgeti(L, -1, static_cast<lua_Integer>(k));  // k <= a table's length fits
         columns.push_back(lua::string(L, -1, "pbf.thermo: a column"));
         lua_pop(L, 1);
       }
     } else {
-      throw Error(fmt::format("pbf.thermo: unknown key '{}'; valid keys: every, columns, csv", key));
+      throw Error(fmt::format("pbf.thermo: unknown key '{}'{}; valid keys: {}", key, did_you_mean(key, keys),
+                              fmt::join(keys, ", ")));
     }
     lua_pop(L, 1);
   }
+  // Range-checked here, as the conversion to int below would wrap a large negative count.
+  if (every < 0) throw Error(fmt::format("thermo: 'every' must be >= 0, got {}", every));
   if (every > 1000000000) throw Error("pbf.thermo: 'every' is too large");
   S.sim.thermo().configure(static_cast<int>(every), columns, csv);
   S.sim.thermo().check(S.sim);
@@ -178,7 +223,7 @@ int l_timing(lua_State* L) {
   lua_setfield(L, -2, "wall");
   lua_pushnumber(L, t.wall_seconds > 0 ? double(t.steps) * double(t.particles) / t.wall_seconds : 0.0);
   lua_setfield(L, -2, "particle_steps_per_second");
-  lua_createtable(L, static_cast<int>(t.rows().size()), 0);
+  lua_createtable(L, lua::size_hint(t.rows().size()), 0);
   for (std::size_t r = 0; r < t.rows().size(); ++r) {
     lua_createtable(L, 0, 3);
     lua_pushstring(L, t.rows()[r].stage.c_str());
@@ -191,6 +236,26 @@ int l_timing(lua_State* L) {
   }
   lua_setfield(L, -2, "rows");
   return 1;
+}
+
+// Lua's print, also copied into the log file.
+int l_print(lua_State* L) {
+  const int n = lua_gettop(L);
+  luaL_Buffer line;
+  luaL_buffinit(L, &line);
+  for (int i = 1; i <= n; ++i) {
+    if (i > 1) luaL_addchar(&line, '\t');
+    luaL_tolstring(L, i, nullptr);  // __tostring and __name as Lua's print
+    luaL_addvalue(&line);
+  }
+  luaL_addchar(&line, '\n');
+  luaL_pushresult(&line);
+  std::size_t size = 0;
+  const char* text = lua_tolstring(L, -1, &size);
+  std::fwrite(text, 1, size, stdout);
+  std::fflush(stdout);  // in order with the info lines, which spdlog flushes
+  log_file::write({text, size});
+  return 0;
 }
 
 // var: reads go through __index so the engine can warn about variables never read.
@@ -220,6 +285,8 @@ Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}, std:
   if (!L) throw Error("cannot create a Lua state (out of memory)");
   state_->L = L;
   luaL_openlibs(L);
+  lua_pushcfunction(L, l_print);
+  lua_setglobal(L, "print");
   std::vector<luaL_Reg> functions = lua::scene_functions();
   const luaL_Reg pipeline[] = {
       {"fix", lua::guarded<l_fix>},
@@ -295,12 +362,29 @@ void Script::run_file(const std::string& path) {
     if (short_src != path && message.rfind(short_src + ":", 0) == 0) message = path + message.substr(short_src.size());
     return message;
   };
-  int status = luaL_loadfilex(L, path.c_str(), "t");
-  if (status == LUA_OK) status = lua_pcall(L, 0, 0, 0);
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw Error(fmt::format("{}: cannot read the script", path), true);
+  ScriptReader reader(text.str());
+  if (lua_load(L, ScriptReader::read, &reader, chunk.c_str(), "t") != LUA_OK) {
+    std::string message = lua_tostring(L, -1);  // load errors are strings
+    lua_pop(L, 1);
+    // The parser's C stack overflow (expressions, tables or calls nested too deeply) comes
+    // without a line: it is the line the parser was reading.
+    if (!lua::has_position(message.c_str()))
+      message = fmt::format("{}:{}: {}{}", path, reader.line(), message,
+                            message == "C stack overflow" ? " (nested too deeply)" : "");
+    throw Error(full_path(message), true);
+  }
+  const int status = lua::pcall(L, 0, 0);
   if (status != LUA_OK) {
     std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error object is not a string";
     lua_pop(L, 1);
     if (state_->interrupted) throw *state_->interrupted;
+    // Out of memory and errors in the message handler, where Lua calls no handler, come
+    // without a place: the script's.
+    if (status == LUA_ERRMEM || status == LUA_ERRERR) message = path + ": " + message;
     throw Error(full_path(message), true);
   }
   if (state_->interrupted) throw *state_->interrupted;  // caught by a pcall in the script

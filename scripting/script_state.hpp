@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
-#include "engine/error.hpp"
-#include "engine/interrupt.hpp"
-#include "engine/params.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/interrupt.hpp"
+#include "engine/registry/params.hpp"
 #include "scripting/lua_util.hpp"
 #include "scripting/script.hpp"
 

@@ -65,8 +65,8 @@ TEST(Lua, EngineErrorsCarryTheScriptLine) {
 
 TEST(Lua, ErrorIsOneLineOnStderr) {
   Script s("error('boom')\n");
-  auto r = run_engine("run " + s.path.string(), "2>/dev/null");
-  EXPECT_EQ(r.output, "");  // nothing on stdout
+  auto r = run_engine("run " + s.path.string() + " --log-level warn", "2>/dev/null");
+  EXPECT_EQ(r.output, "");  // nothing on stdout (the info lines, the first of which names the version, are off)
   r = run_engine("run " + s.path.string(), "2>&1 1>/dev/null");
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
 }
@@ -139,7 +139,8 @@ TEST(Lua, RunsContinueAcrossCallsWithoutRepeatingFrames) {
 }
 
 TEST(Lua, ABlowUpNamesStepParticleAndFix) {
-  Script s(kScene + "pbf.fix('g', 'gravity', {acceleration = {0, 0, -1e308}})\npbf.timestep(100)\npbf.run(3)\n");
+  // g dt = -1e309 overflows to -inf in the first kick.
+  Script s(kScene + "pbf.fix('g', 'gravity', {acceleration = {0, 0, -1e4}})\npbf.timestep(1e305)\npbf.run(3)\n");
   auto r = run_engine("run " + s.path.string());
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find(s.path.string() + ":8: step 1: the simulation blew up: particle 0 has a non-finite"),
@@ -175,4 +176,145 @@ TEST(InitFile, MissingInitVariableIsNamed) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find("init_file.lua:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("missing variable 'init'"), std::string::npos) << r.output;
+}
+
+TEST(Lua, NonStringErrorsNameTheirLine) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"local x = 1\n\nerror({})\n", ":3: (error object is a table value)"},
+      {"error(nil)\n", ":1: (error object is a nil value)"},
+      {"\nerror(42)\n", ":2: 42"},
+      {"local e = setmetatable({}, {__tostring = function() return 'custom' end})\nerror(e)\n", ":2: custom"},
+      // A __tostring that fails leaves the type, not "error in error handling".
+      {"error(setmetatable({}, {__tostring = function() error('no') end}))\n", ":1: (error object is a table value)"},
+      {"error('no position', 0)\n", ":1: no position"},
+  };
+  for (const auto& [body, expected] : cases) {
+    Script s(body);
+    auto r = run_engine("run " + s.path.string());
+    EXPECT_EQ(r.code, 1) << body;
+    EXPECT_NE(r.output.find(s.path.string() + expected + "\n"), std::string::npos) << body << r.output;
+  }
+}
+
+TEST(Lua, NonStringErrorInACallbackNamesTheCallbackLine) {
+  Script s(kScene + "pbf.every('cb', 2, function(step)\n  if step == 4 then error({}) end\nend)\npbf.run(10)\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":7: (error object is a table value)\n"), std::string::npos) << r.output;
+}
+
+TEST(Lua, NestingTooDeepNamesFileAndLine) {
+  const std::string deep = std::string(300, '(') + "1" + std::string(300, ')');
+  const std::pair<std::string, std::string> cases[] = {
+      // The parser's limit: expressions, tables and calls nested in the source.
+      {"local x = " + deep + "\n", ":1: C stack overflow (nested too deeply)"},
+      {"local a = 1\nlocal t = " + std::string(300, '{') + std::string(300, '}') + "\n", ":2: C stack overflow"},
+      {"local function f(x) return x end\n\nlocal y = " + [] {
+         std::string s;
+         for (int k = 0; k < 300; ++k) s += "f(";
+         return s + "1" + std::string(300, ')');
+       }() + "\n",
+       ":3: C stack overflow (nested too deeply)"},
+      // At run time: recursion through C functions (tostring, gsub) and through Lua.
+      {"local t\nt = setmetatable({}, {__tostring = function() return tostring(t) end})\nprint(t)\n", ":2: C stack overflow"},
+      {"local function f(s) return (string.gsub(s, '.', f)) end\n\nf('ab')\n", ":1: C stack overflow"},
+      {"local function f(n) return f(n + 1) + 1 end\nf(1)\n", ":1: stack overflow"},
+  };
+  for (const auto& [body, expected] : cases) {
+    Script s(body);
+    auto r = run_engine("run " + s.path.string());
+    EXPECT_EQ(r.code, 1) << body.substr(0, 60);
+    EXPECT_NE(r.output.find(s.path.string() + expected), std::string::npos) << body.substr(0, 60) << r.output;
+  }
+}
+
+TEST(Lua, NumbersThatAreNotIntegersAreRefusedBeforeConversion) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"pbf.run(0/0)", "pbf.run: the number of steps must be an integer, got nan"},
+      {"pbf.run(1/0)", "pbf.run: the number of steps must be an integer, got inf"},
+      {"pbf.run(-1/0)", "pbf.run: the number of steps must be an integer, got -inf"},
+      {"pbf.run(1e300)", "pbf.run: the number of steps must be an integer, got 1e+300"},
+      {"pbf.run(2^63)", "pbf.run: the number of steps must be an integer, got 9.223372036854776e+18"},
+      {"pbf.run(2.5)", "pbf.run: the number of steps must be an integer, got 2.5"},
+      {"pbf.thermo{every = 1/0}", "pbf.thermo: 'every' must be an integer, got inf"},
+      {"pbf.thermo{every = -5e18}", "thermo: 'every' must be >= 0, got -5000000000000000000"},
+      {"pbf.thermo{every = 5e18}", "pbf.thermo: 'every' is too large"},
+      {"pbf.thermo{[1] = 5}", "pbf.thermo: every key must be a name (every, columns or csv), got a number"},
+      {"pbf.every('e', 0/0, print)", "pbf.every: the interval in steps must be an integer, got nan"},
+  };
+  for (const auto& [line, message] : cases) {
+    Script s(kScene + line + "\n");
+    auto r = run_engine("run " + s.path.string());
+    EXPECT_EQ(r.code, 1) << line;
+    EXPECT_NE(r.output.find(s.path.string() + ":6: " + message + "\n"), std::string::npos) << line << "\n" << r.output;
+  }
+  Script s(kScene + "pbf.run(-0.0)\nprint(pbf.step())\n");  // an integral float is an integer
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+}
+
+TEST(Lua, UnknownNamesSuggestTheNearest) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"pbf.fix('p2', 'pbf', {iteratons = 3})",
+       "fix 'p2' (pbf): unknown parameter 'iteratons' (did you mean 'iterations'?); valid parameters: iterations, "},
+      {"pbf.fix('g', 'gravty', {})", "unknown fix style 'gravty' (did you mean 'gravity'?); valid fix styles: gravity, "},
+      {"pbf.fix('d', 'dump/txt', {})", "unknown fix style 'dump/txt' (did you mean 'dump/text'?); valid fix styles: "},
+      {"pbf.compute('k', 'kinetic_enrgy')", "unknown compute style 'kinetic_enrgy' (did you mean 'kinetic_energy'?)"},
+      {"pbf.lattice{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}, spacing = 0.01, velocty = {1, 0, 0}}",
+       "pbf.lattice: unknown parameter 'velocty' (did you mean 'velocity'?); valid parameters: lo, hi, spacing, velocity"},
+      {"pbf.thermo{evry = 5}", "pbf.thermo: unknown key 'evry' (did you mean 'every'?); valid keys: every, columns, csv"},
+      {"pbf.compute('err', 'density_error')\npbf.thermo{columns = {'step', 'err.mx'}}",
+       "thermo: unknown column 'err.mx' (did you mean 'err.max'?); valid columns now: step, time, dt, particles, "
+       "err.avg, err.max, err.compression"},
+      {"pbf.thermo{columns = {'ke'}}", "thermo: unknown column 'ke'; valid columns now: step, time, dt, particles"},
+  };
+  for (const auto& [lines, message] : cases) {
+    Script s(kScene + lines + "\n");
+    auto r = run_engine("run " + s.path.string());
+    EXPECT_EQ(r.code, 1) << lines;
+    EXPECT_NE(r.output.find(s.path.string() + ":" + (lines.find('\n') == std::string::npos ? "6" : "7") + ": " + message),
+              std::string::npos)
+        << lines << "\n" << r.output;
+  }
+  Script s(kScene + "pbf.fix('d', 'dump/text', {path = var.out .. '/f_*.txt', every = 1, fields = {'velocty'}})\n"
+                    "pbf.run(1)\n");
+  auto r = run_engine("run " + s.path.string() + " -v out=" + (s.dir / "o").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":7: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("unknown field 'velocty' (did you mean 'velocity'?); valid fields: position, velocity"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(Lua, PrintKeepsLuasFormat) {
+  Script s("print(1, 'two', nil, true, 2.5, setmetatable({}, {__tostring = function() return 'obj' end}))\nprint()\n");
+  auto r = run_engine("run " + s.path.string() + " --log-level warn");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output, "1\ttwo\tnil\ttrue\t2.5\tobj\n\n");
+}
+
+TEST(Lua, StringsWithZeroBytesAreRefused) {
+  Script s(kScene + "pbf.fix('d', 'dump/text', {path = 'o/f_*.txt\\0x', every = 1})\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":6: fix 'd' (dump/text): parameter 'path' must not contain a zero byte"),
+            std::string::npos)
+      << r.output;
+  Script t("pbf.read_scene('s.txt\\0.lua')\n");
+  r = run_engine("run " + t.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(t.path.string() + ":1: pbf.read_scene: the path must not contain a zero byte"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(Lua, EmptyPathsAreRefused) {
+  for (const std::string function : {"read_scene", "read_particles", "read_restart", "write_restart"}) {
+    Script s("\npbf." + function + "('')\n");
+    auto r = run_engine("run " + s.path.string());
+    EXPECT_EQ(r.code, 1) << function;
+    EXPECT_NE(r.output.find(s.path.string() + ":2: pbf." + function + ": the path must not be empty\n"),
+              std::string::npos)
+        << r.output;
+  }
 }

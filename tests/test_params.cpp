@@ -52,7 +52,13 @@ TEST(Params, IntegralNumbersAreIntegersAndIntegersAreNumbers) {
 
 TEST(Params, RangeChecksNameTheFix) {
   const std::string e = error_of("pbf", {{"iterations", std::int64_t{0}}});
-  EXPECT_NE(e.find("fix 'f' (pbf): parameter 'iterations' must be in 1..1000"), std::string::npos) << e;
+  EXPECT_NE(e.find("fix 'f' (pbf): parameter 'iterations' must be in [1, 1000], got 0"), std::string::npos) << e;
+  EXPECT_NE(error_of("pbf", {{"epsilon", 0.0}}).find("parameter 'epsilon' must be > 0 S0, got 0"), std::string::npos);
+  EXPECT_NE(error_of("gravity", {{"acceleration", Vec3{0, 0, -1e300}}}).find("must be in [-10000, 10000] m/s^2"),
+            std::string::npos);
+  EXPECT_NE(error_of("wcsph", {{"eos", std::string("tiat")}})
+                .find("parameter 'eos' must be one of \"tait\" or \"linear\", got \"tiat\" (did you mean 'tait'?)"),
+            std::string::npos);
   EXPECT_NE(error_of("dump/text", {}).find("exactly one of 'interval'"), std::string::npos);
   EXPECT_NE(error_of("box", {{"restitution", 1.5}}).find("restitution"), std::string::npos);
 }
@@ -79,6 +85,17 @@ TEST(Params, HelpListsEveryStyleAndEveryParameter) {
     for (const auto& p : s.params) EXPECT_NE(one.find(p.name), std::string::npos) << s.name << "." << p.name;
   }
   EXPECT_THROW(r.help("no_such_style"), Error);
+}
+
+// A style's defaults must pass its own checks: a default outside its range would make the
+// style unusable without that parameter.
+TEST(Params, EveryDefaultIsInItsRange) {
+  for (const auto& s : StyleRegistry::builtin().styles()) {
+    GivenParams defaults;
+    for (const auto& p : s.params)
+      if (p.default_value) defaults.emplace_back(p.name, *p.default_value);
+    EXPECT_NO_THROW(Params(s.name, s.params, defaults)) << s.name;
+  }
 }
 
 TEST(Params, StylesReferenceInDocsIsCurrent) {

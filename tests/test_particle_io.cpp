@@ -129,6 +129,24 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
   return at == std::string::npos ? s : s.replace(at, from.size(), to);
 }
 
+// Two points and a 'mass' as raw appended data: the mass block, then the Points block,
+// each with a size header of `header` bytes (4 or 8) and `extra` bytes after the mass;
+// `declared`: the header_type the file claims.
+std::string appended_raw(const std::string& declared, std::size_t header, const std::string& extra = "") {
+  auto block = [&](const std::string& data) {
+    const std::uint64_t size = data.size();
+    return std::string(reinterpret_cast<const char*>(&size), header) + data;  // little-endian: the low bytes
+  };
+  const std::string mass = block(raw<double>({0.5, 0.25})) + extra;
+  const std::string points = block(raw<double>({0, 0.1, 0.2, 1e-3, -4, 5}));
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"" + declared + "\">\n <UnstructuredGrid>\n  <Piece NumberOfPoints=\"2\" NumberOfCells=\"0\">\n"
+         "   <PointData>\n    <DataArray type=\"Float64\" Name=\"mass\" format=\"appended\" offset=\"0\"/>\n"
+         "   </PointData>\n   <Points>\n    <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" "
+         "offset=\"" + std::to_string(mass.size()) + "\"/>\n   </Points>\n  </Piece>\n </UnstructuredGrid>\n"
+         " <AppendedData encoding=\"raw\">\n  _" + mass + points + "\n </AppendedData>\n</VTKFile>\n";
+}
+
 }  // namespace
 
 TEST(Vtu, RoundTripsFloat64AndFloat32PointsAndArraysBitForBit) {
@@ -291,6 +309,72 @@ TEST(Vtu, MalformedFilesAreErrorsNamingTheFile) {
   EXPECT_FILE_ERROR(read_vtu((dir / "missing.vtu").string()), "missing.vtu", "cannot open");
 }
 
+// The header_type names the width of every block's size header. One that disagrees with
+// the data used to be read as shifted numbers, reported later as a particle outside the
+// domain: now every block must hold exactly its header and its array's bytes.
+TEST(Vtu, AHeaderTypeThatDisagreesWithTheDataIsNamed) {
+  const auto dir = test::temp_dir("vtu-header-type");
+  const auto path = (dir / "f.vtu").string();
+  for (const auto& [declared, header] : {std::pair{"UInt32", 4}, std::pair{"UInt64", 8}}) {
+    test::write_file(path, appended_raw(declared, header));
+    const ParticleTable t = read_vtu(path);
+    EXPECT_EQ(t.find("position")->values, (std::vector<double>{0, 0.1, 0.2, 1e-3, -4, 5})) << declared;
+    EXPECT_EQ(t.find("mass")->values, (std::vector<double>{0.5, 0.25})) << declared;
+  }
+  test::write_file(path, appended_raw("UInt32", 8));
+  EXPECT_FILE_ERROR(read_vtu(path), path, ":9: the Points array: header_type=\"UInt32\" says block sizes are 4-byte "
+                    "numbers, but the data have 8-byte ones: the header_type does not match the data (it should be "
+                    "\"UInt64\")");
+  test::write_file(path, appended_raw("UInt64", 4));
+  EXPECT_FILE_ERROR(read_vtu(path), path, "header_type=\"UInt64\" says block sizes are 8-byte numbers, but the "
+                    "data have 4-byte ones");
+  // The same in a frame of the engine's own, and in inline base64 blocks.
+  Frame().write(dir / "engine.vtu", false);
+  test::write_file(path, replaced(test::read_file(dir / "engine.vtu"), "UInt64", "UInt32"));
+  EXPECT_FILE_ERROR(read_vtu(path), path, "the header_type does not match the data (it should be \"UInt64\")");
+  std::string text = replaced(kAscii, "version=\"0.1\"", "header_type=\"UInt64\"");
+  text = replaced(text, "format=\"ascii\">\n          0 0.1 0.2\n          1e-3 -4 5",
+                  "format=\"binary\">" + base64(raw<std::uint32_t>({48}) + raw<double>({0, 0.1, 0.2, 1e-3, -4, 5})));
+  test::write_file(path, text);
+  EXPECT_FILE_ERROR(read_vtu(path), path, "the header_type does not match the data (it should be \"UInt32\")");
+}
+
+TEST(Vtu, BlocksMustHoldExactlyTheirArrays) {
+  const auto dir = test::temp_dir("vtu-blocks");
+  const auto path = (dir / "f.vtu").string();
+  test::write_file(path, appended_raw("UInt64", 8, "abcd"));
+  EXPECT_FILE_ERROR(read_vtu(path), path, "PointData array 'mass': its block holds 4 bytes after the 16 its size "
+                    "header announces");
+  const std::string good = appended_raw("UInt64", 8);
+  test::write_file(path, replaced(good, "offset=\"24\"", "offset=\"0\""));
+  EXPECT_FILE_ERROR(read_vtu(path), path, "two DataArrays start at offset 0 of the appended data");
+  // A <Cells> array (not read, but its offset counts) starting inside the mass block.
+  test::write_file(path, replaced(good, "   </Points>\n", "   </Points>\n   <Cells>\n    <DataArray type=\"Int64\" "
+                                  "Name=\"offsets\" format=\"appended\" offset=\"10\"/>\n   </Cells>\n"));
+  EXPECT_FILE_ERROR(read_vtu(path), path, "PointData array 'mass' needs 16 bytes, but the next array's data start "
+                    "after 2 (their offsets overlap)");
+  std::string text = replaced(kAscii, "format=\"ascii\">\n", "format=\"binary\">");
+  text = replaced(text, "0 0.1 0.2\n          1e-3 -4 5", base64(raw<std::uint32_t>({48}) + raw<double>({0, 0.1, 0.2, 1e-3, -4, 5})) + "AAA");
+  test::write_file(path, text);
+  EXPECT_FILE_ERROR(read_vtu(path), path, "the Points array ends inside a group of four base64 characters");
+}
+
+TEST(Vtu, MalformedNumbersADirectoryAndADeviceAreNamed) {
+  const auto dir = test::temp_dir("vtu-numbers");
+  const auto path = (dir / "f.vtu").string();
+  test::write_file(path, replaced(kAscii, "1e-3", "+-1e-3"));  // was read as -1e-3
+  EXPECT_FILE_ERROR(read_vtu(path), path, ":9: the Points array: '+-1e-3' is not a number");
+  test::write_file(path, replaced(kAscii, "1e-3", "1e999"));
+  EXPECT_FILE_ERROR(read_vtu(path), path, "'1e999' is out of the range of a double");
+  // It used to say "basic_filebuf::underflow error reading the file: Is a directory".
+  fs::create_directories(dir / "frame.vtu");
+  EXPECT_FILE_ERROR(read_vtu((dir / "frame.vtu").string()), "frame.vtu", "cannot open the file: it is a directory");
+  EXPECT_FILE_ERROR(read_particle_file((dir / "frame.vtu").string()), "frame.vtu", "it is a directory");
+  // A device would be read for ever (and a FIFO would block the open): refused at once.
+  fs::create_symlink("/dev/zero", dir / "zero.vtu");
+  EXPECT_FILE_ERROR(read_particle_file((dir / "zero.vtu").string()), "zero.vtu", "it is not a regular file");
+}
+
 TEST(Vtu, CorruptedBytesGiveAnErrorOrATableNeverACrash) {
   const auto dir = test::temp_dir("vtu-fuzz");
   Frame().write(dir / "good.vtu", true);
@@ -383,6 +467,33 @@ TEST(Csv, MalformedFilesNameTheFileAndLine) {
   EXPECT_FILE_ERROR(read_csv((dir / "missing.csv").string()), "missing.csv", "cannot open");
 }
 
+// A UTF-8 byte-order mark (Excel's "CSV UTF-8") used to become part of the first column's
+// name, so a file with x, y, z was refused for having no x.
+TEST(Csv, AcceptsAUtf8ByteOrderMarkAndRefusesUtf16) {
+  const auto dir = test::temp_dir("csv-bom");
+  test::write_file(dir / "p.csv", "\xEF\xBB\xBFx,y,z\r\n0.1,0.2,0.3\r\n");
+  const ParticleInput in = interpret_particles(read_particle_file((dir / "p.csv").string()));
+  EXPECT_EQ(in.x, (std::vector<double>{0.1}));
+  test::write_file(dir / "q.csv", "\xEF\xBB\xBF# exported\nx,y,z\n1,2,3\n");
+  EXPECT_EQ(read_csv((dir / "q.csv").string()).count, 1u);
+  test::write_file(dir / "w.csv", std::string("\xFF\xFEx\0,\0y\0", 8));
+  EXPECT_FILE_ERROR(read_csv((dir / "w.csv").string()), "w.csv:1: the file is UTF-16 text; save it as UTF-8 or ASCII",
+                    "");
+}
+
+TEST(Csv, MalformedNumbersADirectoryAndADeviceAreNamed) {
+  const auto dir = test::temp_dir("csv-numbers");
+  const auto path = (dir / "p.csv").string();
+  test::write_file(path, "x,y,z\n1,+-2,3\n");  // was read as -2
+  EXPECT_FILE_ERROR(read_csv(path), path, "p.csv:2: column 'y': '+-2' is not a number");
+  test::write_file(path, "x,y,z\n1,2,1e999\n");
+  EXPECT_FILE_ERROR(read_csv(path), path, "column 'z': '1e999' is out of the range of a double");
+  fs::create_directories(dir / "d.csv");
+  EXPECT_FILE_ERROR(read_csv((dir / "d.csv").string()), "d.csv", "cannot open the file: it is a directory");
+  fs::create_symlink("/dev/zero", dir / "zero.csv");
+  EXPECT_FILE_ERROR(read_particle_file((dir / "zero.csv").string()), "zero.csv", "it is not a regular file");
+}
+
 TEST(ParticleInput, ScalarColumnsWithVelocityAndMass) {
   const auto dir = test::temp_dir("input-csv");
   test::write_file(dir / "p.CSV",
@@ -443,4 +554,24 @@ TEST(ParticleInput, MissingOrBadColumnsAreErrorsNamingTheFile) {
                     "none.csv", "holds no particles");
   EXPECT_FILE_ERROR(read_particle_file("frames/p.xyz"), "frames/p.xyz", "unsupported particle file type '.xyz'; "
                     "supported: .vtu");
+}
+
+TEST(ParticleInput, MessagesListAFewColumnsAndValuesMustFitThePrecision) {
+  std::vector<Column> many;
+  for (int k = 0; k < 30; ++k) many.push_back(Column{"c" + std::to_string(k), 1, {0}});
+  EXPECT_FILE_ERROR(interpret_particles(ParticleTable{"wide.csv", 1, many}), "wide.csv",
+                    "found: c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11, c12, c13, c14, c15, c16, c17, c18, c19, "
+                    "and 10 more");
+  auto one = [](double vx, double mass) {
+    return ParticleTable{"p.csv", 1, {Column{"x", 1, {0}}, Column{"y", 1, {0}}, Column{"z", 1, {0}},
+                                      Column{"vx", 1, {vx}}, Column{"vy", 1, {0}}, Column{"vz", 1, {0}},
+                                      Column{"mass", 1, {mass}}}};
+  };
+  if (sizeof(real) == 4) {  // a float build: 1e39 would become infinite, 1e-50 zero
+    EXPECT_FILE_ERROR(interpret_particles(one(1e39, 1)), "p.csv", "has velocity (1e+39, 0, 0), not finite in single");
+    EXPECT_FILE_ERROR(interpret_particles(one(0, 1e-50)), "p.csv", "has mass 1e-50; masses must be positive and "
+                      "finite in single precision");
+  } else {
+    EXPECT_EQ(interpret_particles(one(1e39, 1e-50)).vx[0], 1e39);
+  }
 }

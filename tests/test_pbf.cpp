@@ -137,7 +137,7 @@ TEST(Box, ALatticeAtRestStartsAtRestDensityAlongTheWalls) {
   add_lattice(sim, lo, hi, 0.01, v);
   sim.add_fix(styles().make_fix("walls", "box", {}));
   sim.run(0);  // init: the walls calibrate their density
-  const auto& rho = sim.density();
+  const auto& rho = sim.summed_density();
   const auto& P = sim.particles();
   double worst_face = 0, worst = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {

@@ -68,6 +68,42 @@ TEST(SceneFile, MalformedFilesNameTheLine) {
   expect_error("2\n0.002 0.04 0.4 0.01 0.03 7\n", 2, "unexpected '7'");
 }
 
+TEST(SceneFile, AcceptsAByteOrderMarkAndWindowsLineEnds) {
+  const auto dir = test::temp_dir("scene-bom");
+  test::write_file(dir / "a.txt", "\xEF\xBB\xBF" "1 0.002 0.04 0.4 0.01 0.03\r\n+0.1 0.1 0.1 0 0 -1\r\n");
+  const SceneFile s = read_scene_file((dir / "a.txt").string());
+  EXPECT_EQ(s.count, 1);
+  EXPECT_DOUBLE_EQ(s.particles[0], 0.1);
+}
+
+TEST(SceneFile, MalformedNumbersSayWhatIsWrong) {
+  expect_error("1\n" + kHeader + "+-0.1 0.1 0.1 0 0 0\n", 7, "x: '+-0.1' is not a number");  // was read as -0.1
+  expect_error("1\n" + kHeader + "0.1 0.1 0.1 1e400 0 0\n", 7, "vx: '1e400' is out of the range of a double");
+  expect_error("99999999999999999999\n" + kHeader, 1, "particle count N: '99999999999999999999' is too large");
+  if (sizeof(real) == 4) {  // a float build: values it cannot hold
+    expect_error("1\n" + kHeader + "0.1 0.1 0.1 1e39 0 0\n", 7, "vx: '1e39' is too large for the particle data");
+    expect_error("1\n0.002\n1e-50\n0.4\n0.01\n0.03\n", 3, "'1e-50' is too small for the particle data");
+  }
+}
+
+TEST(SceneFile, ADirectoryOrADeviceIsAnError) {
+  const auto dir = test::temp_dir("scene-dir");
+  try {
+    read_scene_file(dir.string());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), dir.string() + ": cannot open scene file: it is a directory");
+  }
+  // A device would be read for ever (and a FIFO would block the open): refused at once.
+  try {
+    read_scene_file("/dev/zero");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/zero: cannot open scene file: it is not a regular file (a device, a pipe "
+                                     "or a socket)");
+  }
+}
+
 TEST(SceneFile, AHugeCountWithoutDataIsAnErrorNotAnAllocation) {
   expect_error("999999999999\n" + kHeader + "0.1 0.1 0.1 0 0 0\n", 7, "found 1 particle line(s)");
 }
@@ -94,7 +130,7 @@ TEST(SceneFile, MassGivesInteriorParticlesTheRestDensity) {
   test::write_file(dir / "lattice.txt", text);
   Simulation sim;
   load_scene(sim, read_scene_file((dir / "lattice.txt").string()));
-  const auto& rho = sim.density();
+  const auto& rho = sim.summed_density();
   const auto& P = sim.particles();
   int interior = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {

@@ -20,9 +20,12 @@ struct Result {
 };
 
 // Runs `pbfengine ARGS` (a shell word list) and captures what it prints (by default
-// stdout and stderr together).
+// stdout and stderr together). A `run` gets `--log none` unless ARGS choose a log: tests
+// run side by side in one directory and must not write the same log.pbfengine.
 inline Result run_engine(const std::string& args, const std::string& redirect = "2>&1") {
-  const std::string command = std::string(PBF_BINARY) + " " + args + " " + redirect;
+  const bool chooses_log = args.find(" --log ") != std::string::npos || args.find(" --log=") != std::string::npos;
+  const std::string log = args.rfind("run", 0) == 0 && !chooses_log ? " --log none" : "";
+  const std::string command = std::string(PBF_BINARY) + " " + args + log + " " + redirect;
   Result r{-1, ""};
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;

@@ -1,5 +1,5 @@
-// density: the SPH density of every particle (kg/m^3), walls included, as the solver
-// sees it.
+// density: the density of every particle (kg/m^3) as the solver uses it: wcsph's own
+// density field (summed or integrated), else the SPH sum with walls.
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
 
@@ -14,18 +14,18 @@ class Density : public Compute {
   void evaluate(Simulation&, std::vector<double>& values) override { values.clear(); }
   bool per_particle() const override { return true; }
   void evaluate_per_particle(Simulation& sim, std::vector<double>& by_id) override {
-    sim.refresh_neighbors();
-    const auto& rho = sim.density();
+    const real* rho = sim.solver_density();
     const auto* ids = sim.particles().ids();
-    by_id.assign(rho.size(), 0.0);
-    for (std::size_t i = 0; i < rho.size(); ++i) by_id[static_cast<std::size_t>(ids[i])] = rho[i];
+    const std::size_t n = sim.particles().size();
+    by_id.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) by_id[static_cast<std::size_t>(ids[i])] = rho[i];
   }
 };
 
 }  // namespace
 
 void register_compute_density(StyleRegistry& r) {
-  r.add({"density", StyleKind::compute, "per-particle SPH density (kg/m^3), walls included", {}, nullptr,
+  r.add({"density", StyleKind::compute, "per-particle density the solver uses (kg/m^3): wcsph's density, else the SPH sum with walls", {}, nullptr,
          make_compute<Density>()});
 }
 

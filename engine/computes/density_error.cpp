@@ -1,5 +1,6 @@
-// density_error: rho/rho0 - 1 over the particles: its average and maximum, and the
-// average compression, the mean of max(rho/rho0 - 1, 0) (what a one-sided solver removes).
+// density_error: rho/rho0 - 1 over the particles, rho the density the solver uses (as the
+// density compute): its average and maximum, and the average compression, the mean of
+// max(rho/rho0 - 1, 0) (what a one-sided solver removes).
 #include <algorithm>
 
 #include "engine/registry/builtin_styles.hpp"
@@ -15,10 +16,9 @@ class DensityError : public Compute {
   DensityError(const std::string& id, const Params&) : Compute(id, "density_error") {}
   std::vector<std::string> names() const override { return {"avg", "max", "compression"}; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
-    sim.refresh_neighbors();
-    const auto& rho = sim.density();
+    const real* rho = sim.solver_density();
     const double inv = 1.0 / sim.rest_density();
-    const std::size_t n = rho.size();
+    const std::size_t n = sim.particles().size();
     const double avg = deterministic_sum(n, [&](std::size_t i) { return rho[i] * inv - 1; }) / double(n);
     const double compression =
         deterministic_sum(n, [&](std::size_t i) { return std::max(rho[i] * inv - 1, 0.0); }) / double(n);

@@ -14,10 +14,7 @@ namespace {
 class Front : public Compute {
  public:
   Front(const std::string& id, const Params& p) : Compute(id, "front"), percentile_(p.real("percentile")) {
-    const std::string& axis = p.string("axis");
-    if (axis != "x" && axis != "y" && axis != "z") throw Error("parameter 'axis' must be \"x\", \"y\" or \"z\"");
-    axis_ = axis[0] - 'x';
-    if (percentile_ < 0 || percentile_ > 100) throw Error("parameter 'percentile' must be in [0, 100]");
+    axis_ = p.string("axis")[0] - 'x';
   }
   std::vector<std::string> names() const override { return {"value"}; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
@@ -40,8 +37,8 @@ void register_compute_front(StyleRegistry& r) {
   r.add({"front",
          StyleKind::compute,
          "a high percentile of one coordinate (m), e.g. a dam-break surge front",
-         {{"axis", ParamType::String, std::string("x"), "", "coordinate: \"x\", \"y\" or \"z\""},
-          {"percentile", ParamType::Real, 99.0, "%", "percentile of the particles' coordinate"}},
+         {ParamSpec{"axis", ParamType::String, std::string("x"), "", "the coordinate"}.one_of({"x", "y", "z"}),
+          ParamSpec{"percentile", ParamType::Real, 99.0, "%", "percentile of the particles' coordinate"}.within(0, 100)},
          nullptr, make_compute<Front>()});
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
@@ -114,6 +115,15 @@ std::vector<std::uint32_t> Particles::index_of_id() const {
   std::vector<std::uint32_t> index(size());
   for (std::size_t i = 0; i < size(); ++i) index[static_cast<std::size_t>(ids_[i])] = static_cast<std::uint32_t>(i);
   return index;
+}
+
+void check_memory_for(const Particles& particles, double count, const std::string& what) {
+  const double bytes_per_particle = 1000.0 * (sizeof(real) == 4 ? 0.7 : 1.0);
+  const double needed = (static_cast<double>(particles.size()) + count) * bytes_per_particle;
+  const double machine = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  if (machine > 0 && !(needed <= machine))
+    throw Error(fmt::format("{}: {:.4g} particles would need about {:.3g} GB of memory; this machine has {:.3g} GB",
+                            what, static_cast<double>(particles.size()) + count, needed / 1e9, machine / 1e9));
 }
 
 }  // namespace pbf

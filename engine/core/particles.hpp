@@ -100,4 +100,9 @@ class Particles {
   std::vector<std::int64_t> ids_;
 };
 
+// Throws, before anything is allocated, when `count` more particles (on top of those there
+// are) would not fit in this machine's memory at about 1 kB each, the cost measured for the
+// PBF dam break in double precision, neighbour lists included. `what` names the request.
+void check_memory_for(const Particles& particles, double count, const std::string& what);
+
 }  // namespace pbf

@@ -16,6 +16,9 @@
 namespace pbf {
 
 constexpr Role kRoles[] = {Role::solver, Role::other, Role::boundary, Role::output};
+// A run of more steps is refused (days of computing, or an end time or a time step in the
+// wrong unit); one of more than kManySteps gets a warning.
+constexpr double kMostSteps = 1e9, kManySteps = 1e7;
 
 class RunLoop {
  public:
@@ -28,12 +31,15 @@ class RunLoop {
     Fix* fix;
     std::size_t row;  // timing row
   };
+  void plan(std::int64_t steps, double until);
   void prepare();
+  void check_start_state() const;
   void check_pipeline() const;
   void step();
   void run_stage(Stage stage, int iteration = 0);
   void call(Stage stage, Fix& fix, int iteration);
   void check_finite(Stage stage, const Fix& fix) const;
+  std::size_t first_non_finite() const;
   void check_clumping() const;
   [[noreturn]] void stop_interrupted();
   double now() const { return omp_get_wtime(); }
@@ -61,9 +67,6 @@ void Simulation::run_until(double time) {
 
 void RunLoop::prepare() {
   auto& P = sim_.particles_;
-  if (P.size() == 0) throw Error("run: there are no particles (create them with pbf.lattice or pbf.read_scene)");
-  if (sim_.h_ <= 0) throw Error("run: the kernel radius h is not set (pbf.kernel_radius)");
-  if (sim_.dt_ <= 0) throw Error("run: the time step is not set (pbf.timestep)");
   sim_.check_inside_domain();
   sim_.collect_boundaries();
   sim_.warn_unmatched_states();
@@ -130,8 +133,55 @@ void RunLoop::check_pipeline() const {
   }
 }
 
+// How long the run takes, decided before anything starts: a run that would not end in any
+// reasonable time, or whose steps no longer move the clock, is refused instead of left to spin.
+void RunLoop::plan(std::int64_t steps, double until) {
+  const double t = sim_.time(), dt = sim_.dt_;
+  const std::string what = steps >= 0 ? fmt::format("run({})", steps) : fmt::format("run_until({})", until);
+  if (t + dt == t)
+    throw Error(fmt::format("{}: the time step {} s vanishes against the time {} s (t + dt == t): the clock cannot "
+                            "advance",
+                            what, dt, t));
+  const double count = steps >= 0 ? static_cast<double>(steps) : std::max(0.0, std::ceil((until - t) / dt - 1e-9));
+  if (count > kMostSteps)
+    throw Error(fmt::format("{}: from t = {} s at dt = {} s that is {:.3g} steps, more than {:.0e}: an end time or a "
+                            "time step in the wrong unit?",
+                            what, t, dt, count, kMostSteps));
+  if (count > kManySteps)
+    spdlog::warn("{}: {:.3g} steps of {} s ahead (more than {:.0e}): this run will take long", what, count, dt,
+                 kManySteps);
+  sim_.run_plan_ = {count, steps >= 0 ? t + count * dt : until};
+}
+
+// The state a run starts from must be one a step can advance: finite, and no particle so
+// fast that one step carries it across the whole domain (it would leave at once).
+void RunLoop::check_start_state() const {
+  const auto& P = sim_.particles_;
+  if (const std::size_t i = first_non_finite(); i < P.size())
+    throw Error(fmt::format("particle {} has a non-finite position or velocity ({} {} {}, {} {} {}): the run cannot start",
+                            P.ids()[i], P.x()[i], P.y()[i], P.z()[i], P.vx()[i], P.vy()[i], P.vz()[i]));
+  double widest = 0;
+  for (int a = 0; a < 3; ++a) widest = std::max(widest, sim_.domain_.extent(a));
+  const real* v[3] = {P.vx(), P.vy(), P.vz()};
+  for (std::size_t i = 0; i < P.size(); ++i)
+    for (int a = 0; a < 3; ++a)
+      if (std::fabs(double(v[a][i])) * sim_.dt_ > widest)
+        throw Error(fmt::format("particle {} has velocity {} m/s along {}: one step of {} s carries it {:.3g} m, "
+                                "farther than the whole domain ({} m) is wide",
+                                P.ids()[i], v[a][i], "xyz"[a], sim_.dt_, std::fabs(double(v[a][i])) * sim_.dt_,
+                                widest));
+}
+
 void RunLoop::run(std::int64_t steps, double until) {
   const double start = now();
+  // What is missing first, then what is absurd.
+  if (sim_.particles_.size() == 0)
+    throw Error("run: there are no particles (create them with pbf.lattice or pbf.read_scene)");
+  if (sim_.h_ <= 0) throw Error("run: the kernel radius h is not set (pbf.kernel_radius)");
+  if (sim_.dt_ <= 0) throw Error("run: the time step is not set (pbf.timestep)");
+  sim_.check_scale();
+  plan(steps, until);
+  check_start_state();
   prepare();
   sim_.thermo_.start_run(sim_);
   const std::int64_t first = sim_.step_, last = first + steps;
@@ -140,8 +190,14 @@ void RunLoop::run(std::int64_t steps, double until) {
   double next_progress = start + 10.0;
   InterruptWatch interrupt;
   while (more()) {
+    const double before = sim_.time();
     try {
       step();
+      // A run to a time whose step control (cfl) shrinks the step to nothing would never end.
+      if (steps < 0 && (!(sim_.time() > before) || (until - sim_.time()) / sim_.dt_ > kMostSteps))
+        throw Error(fmt::format("step {}: the time step has shrunk to {} s at t = {} s: reaching t = {} s would take "
+                                "{:.3g} more steps",
+                                sim_.step_, sim_.dt_, sim_.time(), until, (until - sim_.time()) / sim_.dt_));
     } catch (const Error& e) {
       // A failed step leaves the newest restart valid: say where to continue from.
       const RestartNote& note = sim_.last_restart();
@@ -278,7 +334,8 @@ void RunLoop::check_clumping() const {
       sim_.step_ + 1, sim_.particles_.ids()[first], grid.count(first), full_neighborhood_));
 }
 
-void RunLoop::check_finite(Stage stage, const Fix& fix) const {
+// The first particle (in memory order) whose position or velocity is NaN or infinite; n if none.
+std::size_t RunLoop::first_non_finite() const {
   const auto& P = sim_.particles_;
   const real *x = P.x(), *y = P.y(), *z = P.z(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
   const std::size_t n = P.size();
@@ -289,12 +346,18 @@ void RunLoop::check_finite(Stage stage, const Fix& fix) const {
     const real s = x[i] * 0 + y[i] * 0 + z[i] * 0 + vx[i] * 0 + vy[i] * 0 + vz[i] * 0;
     if (s != s) first = std::min(first, i);
   }
-  if (first == n) return;
+  return first;
+}
+
+void RunLoop::check_finite(Stage stage, const Fix& fix) const {
+  const std::size_t first = first_non_finite();
+  if (first == sim_.particles_.size()) return;
+  const auto& P = sim_.particles_;
   throw Error(fmt::format(
       "step {}: the simulation blew up: particle {} has a non-finite position or velocity "
       "(position {} {} {}, velocity {} {} {}) after fix '{}' ({}) in stage {}",
-      sim_.step_ + 1, P.ids()[first], x[first], y[first], z[first], vx[first], vy[first], vz[first], fix.id(),
-      fix.style(), stage_name(stage)));
+      sim_.step_ + 1, P.ids()[first], P.x()[first], P.y()[first], P.z()[first], P.vx()[first], P.vy()[first],
+      P.vz()[first], fix.id(), fix.style(), stage_name(stage)));
 }
 
 }  // namespace pbf

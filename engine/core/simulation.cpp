@@ -1,6 +1,7 @@
 #include "engine/core/simulation.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -8,6 +9,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/io/bytes.hpp"
+#include "engine/sph/resolution.hpp"
 
 namespace pbf {
 
@@ -16,7 +18,7 @@ Simulation::~Simulation() = default;
 
 void Simulation::set_domain(const Domain& domain) {
   for (int a = 0; a < 3; ++a)
-    if (!(domain.hi[a] > domain.lo[a]) || !std::isfinite(domain.lo[a]) || !std::isfinite(domain.hi[a]))
+    if (!(domain.hi[a] > domain.lo[a]) || !std::isfinite(domain.hi[a] - domain.lo[a]))
       throw Error(fmt::format("domain: hi must exceed lo along every axis (axis {}: lo {}, hi {})", "xyz"[a],
                               domain.lo[a], domain.hi[a]));
   domain_ = domain;
@@ -25,8 +27,16 @@ void Simulation::set_domain(const Domain& domain) {
 
 void Simulation::set_kernel_radius(double h) {
   if (!(h > 0) || !std::isfinite(h)) throw Error(fmt::format("kernel radius h must be positive, got {}", h));
+  const Kernels kernels(h);
+  if (!std::isfinite(kernels.poly6_coef) || !(kernels.poly6_coef > 0) || !std::isfinite(kernels.spiky_coef))
+    throw Error(fmt::format("kernel radius h = {} m: the kernels' coefficients (315 / (64 pi h^9)) are beyond the {} "
+                            "precision of the particle data; choose a unit in which h is nearer 1",
+                            h, sizeof(real) == 4 ? "single" : "double"));
+  // Particles made for another h (pbf.kernel_radius after pbf.lattice): checked against it now.
+  const auto& P = particles_;
+  if (P.size() > 1) check_kernel_radius(h, sampled_spacing(P.x(), P.y(), P.z(), P.size()), "pbf.kernel_radius");
   h_ = h;
-  kernels_ = Kernels(h);
+  kernels_ = kernels;
   positions_changed();
 }
 
@@ -39,8 +49,21 @@ void Simulation::set_timestep(double dt) {
 }
 
 void Simulation::set_rest_density(double rho0) {
-  if (!(rho0 > 0) || !std::isfinite(rho0)) throw Error(fmt::format("rest density must be positive, got {}", rho0));
+  // The densest liquid, mercury, is 13,546 kg/m^3: 1e5 leaves room for any fluid in SI units.
+  if (!(rho0 > 0 && rho0 <= 1e5))
+    throw Error(fmt::format("rest density must be in (0, 1e5] kg/m^3, got {}", rho0));
   rest_density_ = rho0;
+}
+
+void Simulation::check_scale() const {
+  constexpr double kMostRadii = 1e6;
+  for (int a = 0; a < 3; ++a) {
+    const double reach = std::max(std::fabs(domain_.lo[a]), std::fabs(domain_.hi[a]));
+    if (reach > kMostRadii * h_)
+      throw Error(fmt::format("the domain reaches {:.3g} m from the origin along {}, {:.3g} kernel radii (h = {:.3g} m): "
+                              "more than {:.0e}, where positions no longer resolve h; a domain or an h in the wrong unit?",
+                              reach, "xyz"[a], reach / h_, h_, kMostRadii));
+  }
 }
 
 void Simulation::set_clock(const Clock& clock) {
@@ -49,7 +72,24 @@ void Simulation::set_clock(const Clock& clock) {
   time_base_ = clock.time_base;
 }
 
+namespace {
+// Ids name rows of the timing table, thermo columns ("id.name") and files: letters, digits,
+// '_' and '-' only, so that none of them breaks.
+void check_id(const std::string& id, const char* kind) {
+  auto allowed = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; };
+  if (id.empty()) throw Error(fmt::format("a {} id must not be empty", kind));
+  if (id.size() > 64 || !std::all_of(id.begin(), id.end(), allowed)) {
+    std::string shown;  // a newline or a control character shown as \xNN, not printed
+    for (unsigned char c : id.substr(0, 64))
+      shown += std::isprint(c) ? std::string(1, static_cast<char>(c)) : fmt::format("\\x{:02x}", c);
+    throw Error(fmt::format("{} id '{}'{}: use at most 64 letters, digits, '_' and '-'", kind, shown,
+                            id.size() > 64 ? "..." : ""));
+  }
+}
+}  // namespace
+
 void Simulation::add_fix(std::unique_ptr<Fix> fix) {
+  check_id(fix->id(), "fix");
   if (find_fix(fix->id()))
     throw Error(fmt::format("a fix with id '{}' exists already (unfix it first)", fix->id()));
   if (const char* job = fix->exclusive_job())
@@ -66,7 +106,7 @@ void Simulation::add_fix(std::unique_ptr<Fix> fix) {
 void Simulation::set_saved_states(std::vector<SavedFixState> states, const std::string& source) {
   saved_states_ = std::move(states);
   saved_states_source_ = source;
-  fixes_restored_.clear();
+  fixes_matched_.clear();
   check_saved_states_ = true;
   for (auto& f : fixes_) restore_saved_state(*f);  // fixes declared before the read
 }
@@ -85,8 +125,8 @@ void Simulation::restore_saved_state(Fix& fix) {
     if (reader.left() != 0)
       throw Error(fmt::format("{}: {} bytes left over (written by another version of the style?)", what,
                               reader.left()));
-    fixes_restored_.push_back(fix.id());
   }
+  fixes_matched_.push_back(fix.id());  // restored, or warned about once: not "afresh" too
   saved_states_.erase(it);
 }
 
@@ -99,7 +139,7 @@ void Simulation::warn_unmatched_states() {
     spdlog::warn("fix '{}' ({}) is in restart '{}' but not in the pipeline: its saved state is dropped", s.id,
                  s.style, saved_states_source_);
   for (const auto& f : fixes_)
-    if (std::find(fixes_restored_.begin(), fixes_restored_.end(), f->id()) == fixes_restored_.end())
+    if (std::find(fixes_matched_.begin(), fixes_matched_.end(), f->id()) == fixes_matched_.end())
       spdlog::warn("fix '{}' ({}) is not in restart '{}': it starts afresh", f->id(), f->style(),
                    saved_states_source_);
   saved_states_.clear();
@@ -138,6 +178,7 @@ Fix* Simulation::find_fix(const std::string& id) const {
 }
 
 void Simulation::add_compute(std::unique_ptr<Compute> compute) {
+  check_id(compute->id(), "compute");
   if (find_compute(compute->id()))
     throw Error(fmt::format("a compute with id '{}' exists already", compute->id()));
   computes_.push_back(std::move(compute));
@@ -164,7 +205,13 @@ void Simulation::refresh_neighbors() {
   grid_version_ = positions_version_;
 }
 
-const std::vector<real>& Simulation::density() {
+const real* Simulation::solver_density() {
+  if (const auto field = particles_.find("density")) return particles_.data(*field);
+  refresh_neighbors();
+  return summed_density().data();
+}
+
+const std::vector<real>& Simulation::summed_density() {
   if (density_version_ == positions_version_ && density_.size() == particles_.size()) return density_;
   if (grid_.particle_count() != particles_.size()) refresh_neighbors();
   const std::size_t n = particles_.size();

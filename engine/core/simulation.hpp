@@ -54,6 +54,10 @@ class Simulation {
   void set_timestep(double dt);
   double rest_density() const { return rest_density_; }
   void set_rest_density(double rho0);
+  // Throws when the domain reaches more than 1e6 kernel radii from the origin: positions
+  // there cannot resolve h (in single precision they move in steps of 0.1 h), and the
+  // neighbour grid's capped cell count would put the whole fluid in one cell.
+  void check_scale() const;
   // Steps between reorderings of particle memory along the grid (0: never).
   void set_reorder_interval(int steps) { reorder_every_ = steps; }
 
@@ -92,6 +96,12 @@ class Simulation {
   // changes as the run goes (fix cfl), the number of steps is not known in advance.
   void run_until(double time);
   const TimingTable& last_timing() const { return timing_; }
+  // What the run now starting plans (set before any fix's init): about how many steps, and
+  // the time it ends at (estimated with the current time step when the run is by steps).
+  struct RunPlan {
+    double steps = 0, end_time = 0;
+  };
+  const RunPlan& run_plan() const { return run_plan_; }
 
   // --- services for fixes and computes ---
   // Neighbour lists of this step's neighbour stage (built from predicted positions).
@@ -99,7 +109,11 @@ class Simulation {
   // Rebuilds the lists if positions changed since they were built (for measurements).
   void refresh_neighbors();
   // SPH density with wall contributions, at the current positions over the current lists.
-  const std::vector<real>& density();
+  const std::vector<real>& summed_density();
+  // The density the solver uses, for measurements between steps (computes, dumps): the
+  // "density" field of a solver that keeps one (wcsph, summed or integrated), else the SPH
+  // sum over freshly built lists. One value per particle, in memory order.
+  const real* solver_density();
   // Fixes that move particles outside the run loop's knowledge call this.
   void positions_changed() { ++positions_version_; }
   const std::vector<DensityBoundary*>& density_boundaries() const { return boundaries_; }
@@ -121,9 +135,10 @@ class Simulation {
 
   std::vector<SavedFixState> saved_states_;
   std::string saved_states_source_;
-  std::vector<std::string> fixes_restored_;  // ids given their saved state
+  std::vector<std::string> fixes_matched_;   // ids that met their saved state (restored or warned)
   bool check_saved_states_ = false;           // warn at the next run about fixes on one side only
   RestartNote last_restart_;
+  RunPlan run_plan_;
 
   std::vector<std::unique_ptr<Fix>> fixes_;
   std::vector<std::unique_ptr<Compute>> computes_;

@@ -1,12 +1,14 @@
 #include "engine/core/thermo.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/names.hpp"
 #include "engine/core/simulation.hpp"
 
 namespace pbf {
@@ -32,10 +34,10 @@ void Thermo::configure(int every, std::vector<std::string> columns, const std::s
       if (!parent.empty()) std::filesystem::create_directories(parent, ec);
       csv_.open(csv_path_);
       if (!csv_) throw Error(fmt::format("thermo: cannot write CSV file '{}'", csv_path_));
-      csv_ << fmt::format("{}\n", fmt::join(columns_, ","));
+      write_csv(fmt::format("{}\n", fmt::join(columns_, ",")));
     }
   } else if (csv_.is_open() && !same_columns) {  // new columns: a new header row
-    csv_ << fmt::format("{}\n", fmt::join(columns_, ","));
+    write_csv(fmt::format("{}\n", fmt::join(columns_, ",")));
   }
 }
 
@@ -55,7 +57,8 @@ void Thermo::check(const Simulation& sim) const {
   const auto valid = valid_columns(sim);
   for (const auto& col : columns_)
     if (std::find(valid.begin(), valid.end(), col) == valid.end())
-      throw Error(fmt::format("thermo: unknown column '{}'; valid columns now: {}", col, fmt::join(valid, ", ")));
+      throw Error(fmt::format("thermo: unknown column '{}'{}; valid columns now: {}", col, did_you_mean(col, valid),
+                              fmt::join(valid, ", ")));
 }
 
 std::vector<double> Thermo::values(Simulation& sim) const {
@@ -87,6 +90,14 @@ std::vector<double> Thermo::values(Simulation& sim) const {
   return out;
 }
 
+// A line goes out whole or the run stops: a full disk must not leave a CSV cut mid-line
+// behind a run that says it succeeded.
+void Thermo::write_csv(const std::string& text) {
+  csv_ << text;
+  csv_.flush();
+  if (!csv_) throw Error(fmt::format("thermo: cannot write CSV file '{}' (disk full?)", csv_path_));
+}
+
 void Thermo::start_run(Simulation& sim) {
   if (every_ <= 0) return;
   check(sim);
@@ -104,14 +115,17 @@ void Thermo::output(Simulation& sim) {
   if (sim.step() == last_step_) return;  // never twice for one step
   last_step_ = sim.step();
   const auto v = values(sim);
+  for (std::size_t k = 0; k < v.size(); ++k)
+    if (!std::isfinite(v[k]))  // an overflow the finite-position check cannot see (v^2 in the energy)
+      throw Error(fmt::format("step {}: thermo column '{}' is {}: the state has overflowed", sim.step(), columns_[k],
+                              v[k]));
   std::string line;
   for (std::size_t k = 0; k < v.size(); ++k) line += fmt::format("{:>{}.7g}", v[k], width(columns_[k]));
   spdlog::info("{}", line);
   if (csv_.is_open()) {
     std::string row;
     for (std::size_t k = 0; k < v.size(); ++k) row += fmt::format("{}{}", k ? "," : "", v[k]);
-    csv_ << row << '\n';
-    csv_.flush();
+    write_csv(row + '\n');
   }
 }
 

@@ -27,6 +27,7 @@ class Thermo {
 
  private:
   void output(Simulation& sim);
+  void write_csv(const std::string& text);
 
   int every_ = 0;
   std::vector<std::string> columns_ = {"step", "time"};

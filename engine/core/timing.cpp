@@ -19,7 +19,8 @@ double TimingTable::seconds(const std::string& stage, const std::string& label) 
 
 std::string TimingTable::format() const {
   const double total = wall_seconds > 0 ? wall_seconds : 1e-300;
-  std::string out = fmt::format("Timing: {} steps of {} particles in {:.3f} s\n", steps, particles, wall_seconds);
+  std::string out = fmt::format("Timing: {} step{} of {} particles in {:.3f} s\n", steps, steps == 1 ? "" : "s", particles,
+                                wall_seconds);
   out += fmt::format("  {:<44} {:>10} {:>7}\n", "stage / fix", "seconds", "share");
   double accounted = 0;
   std::string stage;

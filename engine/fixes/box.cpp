@@ -33,10 +33,7 @@ class Box : public Fix, public DensityBoundary {
       : Fix(id, "box"),
         restitution_(p.real("restitution")),
         friction_(p.real("friction")),
-        wall_density_(p.boolean("wall_density")) {
-    if (restitution_ < 0 || restitution_ > 1) throw Error("parameter 'restitution' must be in [0, 1]");
-    if (friction_ < 0) throw Error("parameter 'friction' must be >= 0");
-  }
+        wall_density_(p.boolean("wall_density")) {}
 
   std::vector<Stage> stages() const override {
     if (restitution_ > 0) return {Stage::predict, Stage::constraints, Stage::velocity_update};
@@ -164,8 +161,9 @@ void register_box(StyleRegistry& r) {
   r.add({"box",
          StyleKind::fix,
          "walls at the domain faces: projection, restitution, friction, wall density",
-         {{"restitution", ParamType::Real, 0.0, "", "normal velocity kept after an impact, reversed (0..1)"},
-          {"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at a wall, exp(-rate dt)"},
+         {ParamSpec{"restitution", ParamType::Real, 0.0, "", "normal velocity kept after an impact, reversed"}.within(0, 1),
+          ParamSpec{"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at a wall, exp(-rate dt)"}
+              .at_least(0),
           {"wall_density", ParamType::Bool, true, "",
            "count each wall as fluid at rest density behind it in the density sum"}},
          [](const std::string& id, const Params& p) { return std::make_unique<Box>(id, p); }, nullptr});

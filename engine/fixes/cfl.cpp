@@ -27,10 +27,7 @@ class Cfl : public Fix {
         force_(p.real("force")),
         max_dt_(p.real("max_dt")),
         c_(p.real("sound_speed")),
-        align_(p.real("align")) {
-    if (!(courant_ > 0) || !(force_ > 0)) throw Error("'courant' and 'force' must be > 0");
-    if (max_dt_ < 0 || c_ < 0 || align_ < 0) throw Error("'max_dt', 'sound_speed' and 'align' must be >= 0");
-  }
+        align_(p.real("align")) {}
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
   const char* exclusive_job() const override { return "time-step control"; }
@@ -97,11 +94,15 @@ void register_cfl(StyleRegistry& r) {
   r.add({"cfl",
          StyleKind::fix,
          "time-step control: dt = min(max_dt, courant h/(c + |v|max), force sqrt(h/|a|max)), chosen every step",
-         {{"courant", ParamType::Real, 0.15, "", "Courant number on h / (c + |v|max), h the support radius"},
-          {"force", ParamType::Real, 0.15, "", "factor of the force criterion sqrt(h / |a|max)"},
-          {"max_dt", ParamType::Real, 0.0, "s", "largest step (0: the time step the script set)"},
-          {"sound_speed", ParamType::Real, 0.0, "m/s", "c (0: the largest signal speed of the fixes, wcsph's c0)"},
-          {"align", ParamType::Real, 0.0, "s", "end steps on multiples of this interval (0: no alignment)"}},
+         {ParamSpec{"courant", ParamType::Real, 0.15, "",
+                    "Courant number on h / (c + |v|max), h the support radius (above 1 a step outruns the signal)"}
+              .above_within(0, 1),
+          ParamSpec{"force", ParamType::Real, 0.15, "", "factor of the force criterion sqrt(h / |a|max)"}.above_within(0, 1),
+          ParamSpec{"max_dt", ParamType::Real, 0.0, "s", "largest step (0: the time step the script set)"}.at_least(0),
+          ParamSpec{"sound_speed", ParamType::Real, 0.0, "m/s", "c (0: the largest signal speed of the fixes, wcsph's c0)"}
+              .within(0, kMostSoundSpeed),
+          ParamSpec{"align", ParamType::Real, 0.0, "s", "end steps on multiples of this interval (0: no alignment)"}
+              .at_least(0)},
          [](const std::string& id, const Params& p) { return std::make_unique<Cfl>(id, p); }, nullptr});
 }
 

@@ -47,9 +47,14 @@ class DumpMovie : public Fix {
  public:
   DumpMovie(const std::string& id, const Params& p)
       : Fix(id, "dump/movie"), path_(p.string("path")), fps_(p.integer("fps")), schedule_(p, true), images_(p) {
-    if (fps_ < 1 || fps_ > 240) throw Error(fmt::format("'fps' must be 1 to 240, got {}", fps_));
     if (images_.width() % 2 || images_.height() % 2)
       throw Error("'width' and 'height' must be even (the H.264 encoder's yuv420p needs it)");
+    // ffmpeg picks the container from the extension; anything else fails inside ffmpeg.
+    const std::string extension = std::filesystem::path(path_).extension().string();
+    if (extension != ".mp4" && extension != ".mkv" && extension != ".mov")
+      throw Error(fmt::format("parameter 'path' must name an .mp4, .mkv or .mov file, got '{}'", path_));
+    if (std::filesystem::is_directory(path_))
+      throw Error(fmt::format("parameter 'path': '{}' is a directory", path_));
   }
 
   ~DumpMovie() override {
@@ -65,7 +70,7 @@ class DumpMovie : public Fix {
   void init(Simulation& sim) override {
     images_.init(sim);
     if (!pipe_) open();
-    schedule_.start(sim);
+    schedule_.start(sim, fmt::format("fix '{}' ({})", id(), style()));
     end_of_step(sim);
   }
 
@@ -112,7 +117,7 @@ class DumpMovie : public Fix {
 void register_dump_movie(StyleRegistry& r) {
   std::vector<ParamSpec> params = {
       {"path", ParamType::String, std::string("out/movie.mp4"), "", "the movie file (H.264 mp4)"},
-      {"fps", ParamType::Integer, std::int64_t{25}, "1/s", "frames per second of the movie"}};
+      ParamSpec{"fps", ParamType::Integer, std::int64_t{25}, "1/s", "frames per second of the movie"}.within(1, 240)};
   for (auto& p : OutputSchedule::params("frames")) params.push_back(std::move(p));
   for (auto& p : ParticleImages::params()) params.push_back(std::move(p));
   r.add({"dump/movie", StyleKind::fix, "an mp4 movie of the pictures dump/image draws, encoded by ffmpeg as the run goes",

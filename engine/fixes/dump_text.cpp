@@ -2,11 +2,10 @@
 // particle count N, then N lines "x y z vx vy vz" in input (id) order, each number in the
 // shortest form that reads back to the same value. With other fields, each line holds
 // their components in the order given, after a "# names" comment line.
-#include <cstdio>
 #include <fmt/format.h>
 #include <omp.h>
 
-#include "engine/core/error.hpp"
+#include "engine/io/atomic_file.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/output/dump.hpp"
 #include "engine/core/simulation.hpp"
@@ -63,11 +62,10 @@ class DumpText : public Dump {
         fmt::format_to(out, "\n");
       }
     }
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) throw Error(fmt::format("cannot write frame file '{}'", path));
-    bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
-    for (const auto& part : lines) ok = ok && std::fwrite(part.data(), 1, part.size(), f) == part.size();
-    if (std::fclose(f) != 0 || !ok) throw Error(fmt::format("cannot write frame file '{}' (disk full?)", path));
+    AtomicFile file(path);  // a full disk leaves no cut-off frame behind
+    file.write(buf.data(), buf.size());
+    for (const auto& part : lines) file.write(part.data(), part.size());
+    file.commit();
   }
 };
 

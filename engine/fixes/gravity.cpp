@@ -59,7 +59,9 @@ class Gravity : public Fix {
 
 void register_gravity(StyleRegistry& r) {
   r.add({"gravity", StyleKind::fix, "constant acceleration (gravity) added to every particle",
-         {{"acceleration", ParamType::Vector3, Vec3{0, 0, -9.81}, "m/s^2", "acceleration vector (z is up)"}},
+         {ParamSpec{"acceleration", ParamType::Vector3, Vec3{0, 0, -9.81}, "m/s^2",
+                    "acceleration vector (z is up; each component at most 1000 g)"}
+              .magnitude_at_most(kMostAcceleration)},
          [](const std::string& id, const Params& p) { return std::make_unique<Gravity>(id, p); }, nullptr});
 }
 

@@ -30,13 +30,7 @@ class PositionBasedFluid : public Fix {
         k_(p.real("scorr_k")),
         n_(static_cast<int>(p.integer("scorr_n"))),
         dq_(p.real("scorr_dq")),
-        one_sided_(p.boolean("one_sided")) {
-    if (iterations_ < 1 || iterations_ > 1000) throw Error("parameter 'iterations' must be in 1..1000");
-    if (!(epsilon_ > 0)) throw Error("parameter 'epsilon' must be positive");
-    if (k_ < 0) throw Error("parameter 'scorr_k' must be >= 0");
-    if (n_ < 1 || n_ > 16) throw Error("parameter 'scorr_n' must be in 1..16");
-    if (!(dq_ > 0 && dq_ < 1)) throw Error("parameter 'scorr_dq' must be in (0, 1) (a fraction of h)");
-  }
+        one_sided_(p.boolean("one_sided")) {}
 
   std::vector<Stage> stages() const override {
     return {Stage::predict, Stage::constraints, Stage::velocity_update};
@@ -179,11 +173,16 @@ void register_pbf(StyleRegistry& r) {
   r.add({"pbf",
          StyleKind::fix,
          "Position Based Fluids density constraint and integrator (Macklin & Mueller 2013)",
-         {{"iterations", ParamType::Integer, std::int64_t{4}, "", "constraint solver iterations per step"},
-          {"epsilon", ParamType::Real, 0.01, "S0", "relaxation epsilon, relative to S0 (see docs)"},
-          {"scorr_k", ParamType::Real, 0.0, "", "artificial pressure strength k (s_corr is divided by S0; 0: none)"},
-          {"scorr_n", ParamType::Integer, std::int64_t{4}, "", "artificial pressure exponent n"},
-          {"scorr_dq", ParamType::Real, 0.2, "h", "artificial pressure reference distance delta q, in units of h"},
+         {ParamSpec{"iterations", ParamType::Integer, std::int64_t{4}, "", "constraint solver iterations per step"}
+              .within(1, 1000),
+          ParamSpec{"epsilon", ParamType::Real, 0.01, "S0", "relaxation epsilon, relative to S0 (see docs)"}.above(0),
+          ParamSpec{"scorr_k", ParamType::Real, 0.0, "",
+                    "artificial pressure strength k, as a density error (s_corr is divided by S0; 0: none; 1 pushes "
+                    "as hard as a 100% compression)"}
+              .within(0, 1),
+          ParamSpec{"scorr_n", ParamType::Integer, std::int64_t{4}, "", "artificial pressure exponent n"}.within(1, 16),
+          ParamSpec{"scorr_dq", ParamType::Real, 0.2, "h", "artificial pressure reference distance delta q, in units of h"}
+              .above_within(0, 1),
           {"one_sided", ParamType::Bool, true, "", "constrain only compression, C = max(rho/rho0 - 1, 0)"}},
          [](const std::string& id, const Params& p) { return std::make_unique<PositionBasedFluid>(id, p); },
          nullptr});

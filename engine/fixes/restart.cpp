@@ -23,7 +23,6 @@ class PeriodicRestart : public Fix {
  public:
   PeriodicRestart(const std::string& id, const Params& p)
       : Fix(id, "restart"), path_(p.string("path"), "the step number"), keep_(p.integer("keep")), schedule_(p, false) {
-    if (keep_ < 1) throw Error(fmt::format("parameter 'keep' must be >= 1, got {}", keep_));
   }
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
@@ -93,7 +92,8 @@ void register_restart(StyleRegistry& r) {
   params.insert(params.begin(),
                 {{"path", ParamType::String, std::string("run.*.restart"), "",
                   "file name pattern; '*' becomes the step number (directories are created)"},
-                 {"keep", ParamType::Integer, std::int64_t{2}, "", "how many of the newest restarts to keep"}});
+                 ParamSpec{"keep", ParamType::Integer, std::int64_t{2}, "", "how many of the newest restarts to keep"}
+                     .within(1, 1000000)});
   r.add({"restart", StyleKind::fix, "writes restart files periodically (and on Ctrl-C), keeping the newest",
          std::move(params), [](const std::string& id, const Params& p) { return std::make_unique<PeriodicRestart>(id, p); },
          nullptr});

@@ -25,11 +25,7 @@ class SphViscosity : public Fix {
         artificial_(p.string("kind") == "artificial"),
         alpha_(p.real("alpha")),
         nu_(p.real("nu")),
-        c0_(p.real("sound_speed")) {
-    if (p.string("kind") != "artificial" && p.string("kind") != "laplacian")
-      throw Error(fmt::format("parameter 'kind' must be \"artificial\" or \"laplacian\", got \"{}\"", p.string("kind")));
-    if (alpha_ < 0 || nu_ < 0 || c0_ < 0) throw Error("'alpha', 'nu' and 'sound_speed' must be >= 0");
-  }
+        c0_(p.real("sound_speed")) {}
 
   std::vector<Stage> stages() const override { return {Stage::forces}; }
   bool needs_neighbors() const override { return true; }
@@ -48,7 +44,7 @@ class SphViscosity : public Fix {
     const std::size_t n = P.size();
     // The density wcsph set this step, or the engine's sum without it.
     const auto field = P.find("density");
-    const real* rho = field ? P.data(*field) : sim.density().data();
+    const real* rho = field ? P.data(*field) : sim.summed_density().data();
     const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * sound_speed(sim)) * h, nu = real(nu_);
@@ -92,10 +88,15 @@ void register_sph_viscosity(StyleRegistry& r) {
   r.add({"sph_viscosity",
          StyleKind::fix,
          "WCSPH viscosity: Monaghan's artificial viscosity or a Laplacian (physical) viscosity",
-         {{"kind", ParamType::String, std::string("artificial"), "", "\"artificial\" (Monaghan) or \"laplacian\" (Morris)"},
-          {"alpha", ParamType::Real, 0.1, "", "artificial viscosity coefficient (with h the support radius)"},
-          {"nu", ParamType::Real, 1e-6, "m^2/s", "kinematic viscosity of the Laplacian form (water: 1e-6)"},
-          {"sound_speed", ParamType::Real, 0.0, "m/s", "c0 of the artificial form; 0: the wcsph fix's sound speed"}},
+         {ParamSpec{"kind", ParamType::String, std::string("artificial"), "", "artificial (Monaghan) or laplacian (Morris)"}
+              .one_of({"artificial", "laplacian"}),
+          ParamSpec{"alpha", ParamType::Real, 0.1, "", "artificial viscosity coefficient (with h the support radius)"}
+              .within(0, 10),
+          ParamSpec{"nu", ParamType::Real, 1e-6, "m^2/s",
+                    "kinematic viscosity of the Laplacian form (water: 1e-6, honey: about 1e-2)"}
+              .within(0, 1e3),
+          ParamSpec{"sound_speed", ParamType::Real, 0.0, "m/s", "c0 of the artificial form; 0: the wcsph fix's sound speed"}
+              .within(0, kMostSoundSpeed)},
          [](const std::string& id, const Params& p) { return std::make_unique<SphViscosity>(id, p); }, nullptr});
 }
 

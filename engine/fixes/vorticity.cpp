@@ -19,9 +19,7 @@ namespace {
 
 class VorticityConfinement : public Fix {
  public:
-  VorticityConfinement(const std::string& id, const Params& p) : Fix(id, "vorticity"), epsilon_(p.real("epsilon")) {
-    if (epsilon_ < 0) throw Error("parameter 'epsilon' must be >= 0");
-  }
+  VorticityConfinement(const std::string& id, const Params& p) : Fix(id, "vorticity"), epsilon_(p.real("epsilon")) {}
 
   std::vector<Stage> stages() const override { return {Stage::velocity_post}; }
   bool needs_neighbors() const override { return true; }
@@ -31,7 +29,7 @@ class VorticityConfinement : public Fix {
   }
 
   void velocity_post(Simulation& sim) override {
-    const std::vector<real>& rho = sim.density();
+    const std::vector<real>& rho = sim.summed_density();
     auto& P = sim.particles();
     const auto& grid = sim.neighbors();
     const Kernels& K = sim.kernels();
@@ -88,7 +86,10 @@ void register_vorticity(StyleRegistry& r) {
   r.add({"vorticity",
          StyleKind::fix,
          "vorticity confinement, acceleration epsilon h |omega| (N x omega)",
-         {{"epsilon", ParamType::Real, 0.05, "", "confinement strength (dimensionless)"}},
+         {ParamSpec{"epsilon", ParamType::Real, 0.05, "",
+                    "confinement strength (dimensionless; at 1 a step adds as much rotation as the flow has at the "
+                    "scale h)"}
+              .within(0, 1)},
          [](const std::string& id, const Params& p) { return std::make_unique<VorticityConfinement>(id, p); },
          nullptr});
 }

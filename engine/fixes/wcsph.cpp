@@ -44,15 +44,7 @@ class Wcsph : public Fix {
         c0_(p.real("sound_speed")),
         gravity_(p.real("gravity")),
         keep_negative_(p.boolean("negative_pressure")),
-        max_error_(p.real("max_density_error")) {
-    if (eos_ != "tait" && eos_ != "linear")
-      throw Error(fmt::format("parameter 'eos' must be \"tait\" or \"linear\", got \"{}\"", eos_));
-    if (density_ != "summation" && density_ != "continuity")
-      throw Error(fmt::format("parameter 'density' must be \"summation\" or \"continuity\", got \"{}\"", density_));
-    if (!(gamma_ >= 1)) throw Error("parameter 'gamma' must be >= 1");
-    if (c0_ < 0) throw Error("parameter 'sound_speed' must be >= 0 (0: 10 sqrt(2 g H))");
-    if (!(max_error_ > 0)) throw Error("parameter 'max_density_error' must be > 0");
-  }
+        max_error_(p.real("max_density_error")) {}
 
   std::vector<Stage> stages() const override { return {Stage::forces}; }
   Role role() const override { return Role::solver; }
@@ -68,9 +60,19 @@ class Wcsph : public Fix {
     pressure_ = P.declare({"pressure", 1, "pressure from the equation of state (Pa)", false});
     accel_ = P.declare(kAccelerationField);
     if (c0_ == 0) c0_ = default_sound_speed(sim, gravity_);  // once: a restart keeps it
-    if (continuity && fresh) {  // the continuity equation starts from rest density (p = 0)
+    if (c0_ == 0)
+      throw Error("parameter 'gravity' is 0, so the default sound speed 10 sqrt(2 g H) is 0: give 'sound_speed'");
+    // A new field holds, before the first step, the density the solver starts from: rest
+    // density for the continuity equation (p = 0), the SPH sum for the summation.
+    if (fresh) {
       real* rho = P.data(rho_);
-      std::fill(rho, rho + P.size(), real(sim.rest_density()));
+      if (continuity) {
+        std::fill(rho, rho + P.size(), real(sim.rest_density()));
+      } else {
+        sim.refresh_neighbors();
+        const auto& summed = sim.summed_density();
+        std::copy(summed.begin(), summed.end(), rho);
+      }
     }
   }
 
@@ -88,7 +90,7 @@ class Wcsph : public Fix {
 
     const auto& walls = sim.density_boundaries();
     if (density_ == "summation") {
-      const auto& summed = sim.density();
+      const auto& summed = sim.summed_density();
       std::copy(summed.begin(), summed.end(), rho);
     } else {
       drho_.resize(n);
@@ -178,14 +180,20 @@ void register_wcsph(StyleRegistry& r) {
   r.add({"wcsph",
          StyleKind::fix,
          "weakly compressible SPH pressure: density, equation of state, pressure acceleration (with leapfrog)",
-         {{"eos", ParamType::String, std::string("tait"), "", "equation of state: \"tait\" or \"linear\""},
-          {"gamma", ParamType::Real, 7.0, "", "Tait exponent"},
-          {"sound_speed", ParamType::Real, 0.0, "m/s", "c0; 0: 10 sqrt(2 g H), H the fluid's initial height"},
-          {"gravity", ParamType::Real, 9.81, "m/s^2", "g in the default sound speed"},
-          {"density", ParamType::String, std::string("summation"), "",
-           "\"summation\" (SPH sum, walls included) or \"continuity\" (integrated from the velocity divergence)"},
+         {ParamSpec{"eos", ParamType::String, std::string("tait"), "", "equation of state"}.one_of({"tait", "linear"}),
+          ParamSpec{"gamma", ParamType::Real, 7.0, "", "Tait exponent (water: 7)"}.within(1, 20),
+          ParamSpec{"sound_speed", ParamType::Real, 0.0, "m/s",
+                    "c0; 0: 10 sqrt(2 g H), H the fluid's initial height (at most 1e4 m/s, faster than sound in steel)"}
+              .within(0, kMostSoundSpeed),
+          ParamSpec{"gravity", ParamType::Real, 9.81, "m/s^2", "g in the default sound speed (its magnitude counts)"}
+              .magnitude_at_most(kMostAcceleration),
+          ParamSpec{"density", ParamType::String, std::string("summation"), "",
+                    "summation: the SPH sum, walls included; continuity: integrated from the velocity divergence"}
+              .one_of({"summation", "continuity"}),
           {"negative_pressure", ParamType::Bool, false, "", "keep negative pressures (false: clamp them to 0)"},
-          {"max_density_error", ParamType::Real, 0.5, "", "stop the run when rho/rho0 - 1 exceeds this (compression; spray may be less dense)"}},
+          ParamSpec{"max_density_error", ParamType::Real, 0.5, "",
+                    "stop the run when rho/rho0 - 1 exceeds this (compression; spray may be less dense)"}
+              .above(0)},
          [](const std::string& id, const Params& p) { return std::make_unique<Wcsph>(id, p); }, nullptr});
 }
 

@@ -13,15 +13,13 @@ namespace {
 
 class XsphViscosity : public Fix {
  public:
-  XsphViscosity(const std::string& id, const Params& p) : Fix(id, "xsph"), c_(p.real("c")) {
-    if (c_ < 0 || c_ > 1) throw Error("parameter 'c' must be in [0, 1]");
-  }
+  XsphViscosity(const std::string& id, const Params& p) : Fix(id, "xsph"), c_(p.real("c")) {}
 
   std::vector<Stage> stages() const override { return {Stage::velocity_post}; }
   bool needs_neighbors() const override { return true; }
 
   void velocity_post(Simulation& sim) override {
-    const std::vector<real>& rho = sim.density();
+    const std::vector<real>& rho = sim.summed_density();
     auto& P = sim.particles();
     const auto& grid = sim.neighbors();
     const Kernels& K = sim.kernels();
@@ -64,7 +62,8 @@ void register_xsph(StyleRegistry& r) {
   r.add({"xsph",
          StyleKind::fix,
          "XSPH viscosity, v_i += c sum_j (m_j/rho_j) (v_j - v_i) W_ij",
-         {{"c", ParamType::Real, 0.01, "", "smoothing coefficient (dimensionless, Macklin & Mueller use 0.01)"}},
+         {ParamSpec{"c", ParamType::Real, 0.01, "", "smoothing coefficient (dimensionless, Macklin & Mueller use 0.01)"}
+              .within(0, 1)},
          [](const std::string& id, const Params& p) { return std::make_unique<XsphViscosity>(id, p); }, nullptr});
 }
 

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "engine/core/error.hpp"
@@ -49,31 +50,37 @@ class ByteReader {
   T get() {
     static_assert(std::is_trivially_copyable_v<T>);
     T value;
-    std::memcpy(&value, take(sizeof(T)), sizeof(T));
+    copy_to(&value, sizeof(T));
     return value;
   }
   std::string get_string() {
     const std::uint64_t n = get<std::uint64_t>();
-    require(n, 1);
-    const auto* p = take(n);
-    return std::string(reinterpret_cast<const char*>(p), n);
+    require(n, 1);  // before the string allocates n bytes
+    std::string s(n, '\0');
+    copy_to(s.data(), n);
+    return s;
   }
   // Reads `count` values into `out` (resized); the count is checked against the bytes left first.
   template <class T>
   void get_array(std::vector<T>& out, std::uint64_t count) {
+    static_assert(std::is_trivially_copyable_v<T>);
     require(count, sizeof(T));
     out.resize(count);
-    std::memcpy(out.data(), take(count * sizeof(T)), count * sizeof(T));
+    copy_to(out.data(), count * sizeof(T));
   }
+  // `out` may be null when `count` is 0 (an empty field of a restart without particles).
   template <class T>
   void get_into(T* out, std::uint64_t count) {
+    static_assert(std::is_trivially_copyable_v<T>);
     require(count, sizeof(T));
-    std::memcpy(out, take(count * sizeof(T)), count * sizeof(T));
+    copy_to(out, count * sizeof(T));
   }
   // A nested block of `size` bytes (a fix's saved state).
   ByteReader sub(std::uint64_t size, const std::string& what) {
     require(size, 1);
-    return ByteReader(take(size), size, what);
+    const unsigned char* p = size > 0 ? data_ + pos_ : nullptr;
+    pos_ += size;
+    return ByteReader(p, size, what);
   }
   std::size_t left() const { return size_ - pos_; }
   const std::string& what() const { return what_; }
@@ -85,11 +92,14 @@ class ByteReader {
   }
 
  private:
-  const unsigned char* take(std::size_t n) {
+  // Copies the next n bytes to `out`. memcpy with a null pointer is undefined even for zero
+  // bytes, and an empty vector's data() (an empty fix state, a field of no particles) and
+  // an empty reader's data are null: so nothing is called for n = 0.
+  void copy_to(void* out, std::size_t n) {
     require(n, 1);
-    const unsigned char* p = data_ + pos_;
+    if (n == 0) return;
+    std::memcpy(out, data_ + pos_, n);
     pos_ += n;
-    return p;
   }
   const unsigned char* data_;
   std::size_t size_, pos_ = 0;

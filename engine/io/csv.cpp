@@ -1,8 +1,11 @@
 #include "engine/io/csv.hpp"
 
 #include <charconv>
+#include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <set>
+#include <string_view>
 
 #include "engine/core/error.hpp"
 
@@ -26,16 +29,31 @@ std::vector<std::string_view> split(std::string_view line) {
   }
 }
 
+// What is wrong with `field` as a number, or null when it is one (then stored in `value`).
 // The whole field must be the number (locale-independent, unlike strtod).
-bool parse_number(std::string_view field, double& value) {
-  const char* begin = field.data() + (field.size() > 1 && field[0] == '+' ? 1 : 0);  // from_chars refuses '+'
-  const auto [end, ec] = std::from_chars(begin, field.data() + field.size(), value);
-  return !field.empty() && ec == std::errc() && end == field.data() + field.size();
+const char* number_problem(std::string_view field, double& value) {
+  // from_chars refuses a leading '+'; skip one, but only before a digit or a point ("+-1").
+  const bool plus = field.size() > 1 && field[0] == '+' && field[1] != '-';
+  const auto [end, ec] = std::from_chars(field.data() + plus, field.data() + field.size(), value);
+  if (ec == std::errc::result_out_of_range) return "is out of the range of a double";
+  if (field.empty() || ec != std::errc() || end != field.data() + field.size()) return "is not a number";
+  return nullptr;
 }
+
+constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
 
 }  // namespace
 
 ParticleTable read_csv(const std::string& path) {
+  // An ifstream opens a directory and fails only at its first read; a device or a pipe may
+  // never end (/dev/zero) or block the open (a FIFO): say what the path is instead.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status))
+    throw Error(fmt::format("{}: cannot open the file: it is a directory", path), true);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw Error(fmt::format("{}: cannot open the file: it is not a regular file (a device, a pipe or a socket)", path),
+                true);
   std::ifstream in(path);
   if (!in) throw Error(fmt::format("{}: cannot open the file", path), true);
   auto fail = [&](long line, const std::string& message) {
@@ -49,6 +67,13 @@ ParticleTable read_csv(const std::string& path) {
   long line = 0, header_line = 0;
   while (std::getline(in, text)) {
     ++line;
+    if (line == 1) {
+      // Excel and Windows editors start UTF-8 files with a byte-order mark: not data.
+      if (text.starts_with(kUtf8ByteOrderMark)) text.erase(0, kUtf8ByteOrderMark.size());
+      // A UTF-16 file would only give baffling errors about its header.
+      if (text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF"))
+        fail(line, "the file is UTF-16 text; save it as UTF-8 or ASCII");
+    }
     const auto content = trim(text);
     if (content.empty() || content[0] == '#') continue;
     const auto fields = split(content);
@@ -56,18 +81,20 @@ ParticleTable read_csv(const std::string& path) {
     if (header_line == 0) {  // the first line that is neither blank nor a comment
       header_line = line;
       bool all_numbers = true;
+      std::set<std::string_view> seen;  // a set: a header of many columns costs no quadratic search
       for (std::size_t k = 0; k < fields.size(); ++k) {
         std::string_view name = fields[k];
         if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
         if (name.empty()) fail(line, fmt::format("column {} of the header has no name", k + 1));
-        if (table.find(std::string(name))) fail(line, fmt::format("column '{}' appears twice in the header", name));
+        if (!seen.insert(name).second) fail(line, fmt::format("column '{}' appears twice in the header", name));
         double ignored;
-        all_numbers = all_numbers && parse_number(name, ignored);
+        all_numbers = all_numbers && !number_problem(name, ignored);
         table.columns.push_back(Column{std::string(name), 1, {}});
         names.append(k ? "," : "").append(name);
       }
       if (all_numbers)  // a file without a header would otherwise lose its first particle silently
         fail(line, "the first line must be a header naming the columns (e.g. x,y,z,vx,vy,vz), not numbers");
+      if (names.size() > 100) names = names.substr(0, 100) + "...";  // a message of a line, whatever the header
       continue;
     }
 
@@ -75,8 +102,8 @@ ParticleTable read_csv(const std::string& path) {
       fail(line, fmt::format("expected {} fields ({}), found {}", table.columns.size(), names, fields.size()));
     for (std::size_t k = 0; k < fields.size(); ++k) {
       double v = 0;
-      if (!parse_number(fields[k], v))
-        fail(line, fmt::format("column '{}': '{}' is not a number", table.columns[k].name, fields[k].substr(0, 40)));
+      if (const char* problem = number_problem(fields[k], v))
+        fail(line, fmt::format("column '{}': '{}' {}", table.columns[k].name, fields[k].substr(0, 40), problem));
       table.columns[k].values.push_back(v);
     }
     ++table.count;

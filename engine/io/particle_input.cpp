@@ -5,8 +5,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <limits>
 
 #include "engine/core/error.hpp"
+#include "engine/core/real.hpp"
 #include "engine/io/csv.hpp"
 #include "engine/io/vtu.hpp"
 
@@ -76,10 +78,16 @@ class Picker {
     return names;
   }
 
+  // The columns for a message: the first few, so a file of a million columns gives a
+  // message of a line.
   std::string found() const {
+    constexpr std::size_t kListed = 20;
     std::vector<std::string> names;
-    for (const auto& c : table_.columns)
+    for (const auto& c : table_.columns) {
+      if (names.size() == kListed) break;
       names.push_back(c.components == 1 ? c.name : fmt::format("{} ({} components)", c.name, c.components));
+    }
+    if (table_.columns.size() > kListed) names.push_back(fmt::format("and {} more", table_.columns.size() - kListed));
     return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
   }
 
@@ -109,16 +117,20 @@ ParticleInput interpret_particles(const ParticleTable& table) {
   if (const Column* m = pick.take("mass", 1)) in.mass = m->values;
   in.ignored = pick.unused();
 
+  // Finite in the particle data's precision too: with -DPBF_REAL=float, a velocity of 1e39
+  // would become infinite and a mass of 1e-50 zero.
+  auto fits = [](double v) { return std::isfinite(v) && std::fabs(v) <= std::numeric_limits<real>::max(); };
+  const char* precision = sizeof(real) == sizeof(double) ? "" : " in single precision";
   for (std::size_t i = 0; i < table.count; ++i) {
-    if (!std::isfinite(in.x[i]) || !std::isfinite(in.y[i]) || !std::isfinite(in.z[i]))
-      pick.fail(fmt::format("particle {} (0-based, in file order) has position ({}, {}, {}), not finite", i, in.x[i],
-                            in.y[i], in.z[i]));
-    if (!std::isfinite(in.vx[i]) || !std::isfinite(in.vy[i]) || !std::isfinite(in.vz[i]))
-      pick.fail(fmt::format("particle {} (0-based, in file order) has velocity ({}, {}, {}), not finite", i, in.vx[i],
-                            in.vy[i], in.vz[i]));
-    if (!in.mass.empty() && !(std::isfinite(in.mass[i]) && in.mass[i] > 0))
-      pick.fail(fmt::format("particle {} (0-based, in file order) has mass {}; masses must be positive and finite", i,
-                            in.mass[i]));
+    if (!fits(in.x[i]) || !fits(in.y[i]) || !fits(in.z[i]))
+      pick.fail(fmt::format("particle {} (0-based, in file order) has position ({}, {}, {}), not finite{}", i, in.x[i],
+                            in.y[i], in.z[i], precision));
+    if (!fits(in.vx[i]) || !fits(in.vy[i]) || !fits(in.vz[i]))
+      pick.fail(fmt::format("particle {} (0-based, in file order) has velocity ({}, {}, {}), not finite{}", i,
+                            in.vx[i], in.vy[i], in.vz[i], precision));
+    if (!in.mass.empty() && !(fits(in.mass[i]) && static_cast<real>(in.mass[i]) > 0))
+      pick.fail(fmt::format("particle {} (0-based, in file order) has mass {}; masses must be positive and finite{}",
+                            i, in.mass[i], precision));
   }
   return in;
 }

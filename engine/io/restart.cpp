@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <omp.h>
+#include <set>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -81,15 +82,45 @@ bool write_all(int fd, const unsigned char* bytes, std::size_t size) {
 
 std::vector<unsigned char> read_file(const std::string& path, const std::string& what) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(what + ": is a directory, not a file");
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error(what + (std::filesystem::exists(path, ec) ? ": not a regular file" : ": no such file"));
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw Error(fmt::format("{}: cannot open it ({})", what, std::strerror(errno)));
-  std::vector<unsigned char> bytes(std::filesystem::file_size(path, ec));
-  const std::size_t got = std::fread(bytes.data(), 1, bytes.size(), f);
+  // On failure file_size returns -1: check before sizing a vector with it.
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) {
+    std::fclose(f);
+    throw Error(fmt::format("{}: cannot read it ({})", what, ec.message()));
+  }
+  std::vector<unsigned char> bytes(size);
+  const std::size_t got = size > 0 ? std::fread(bytes.data(), 1, bytes.size(), f) : 0;
   std::fclose(f);
-  if (ec || got != bytes.size()) throw Error(what + ": cannot read it");
+  if (got != bytes.size()) throw Error(what + ": cannot read it (it changed while being read?)");
   return bytes;
+}
+
+// The most particle fields a restart may hold (the engine declares about ten).
+constexpr std::uint32_t kMaxFields = 1000;
+
+// The largest step a restart may hold. No run comes near it (2^53 steps), a step count
+// up to it converts to the double of time() exactly, and a run of any int64 length added
+// to it stays far from signed overflow.
+constexpr std::int64_t kMaxStep = std::int64_t{1} << 53;
+
+// The clock as a run leaves it: 0 <= step_base <= step <= kMaxStep, time_base finite, and
+// so a finite time. A NaN time or a step near the int64 limit (undefined behaviour once
+// the run loop counts on) is a damaged file.
+void check_clock(const Clock& clock, double dt, const std::string& what) {
+  auto damaged = [&](const std::string& why) {
+    throw Error(fmt::format("{}: the clock is damaged ({}; step {}, step_base {}, time_base {})", what, why,
+                            clock.step, clock.step_base, clock.time_base));
+  };
+  if (clock.step < 0 || clock.step > kMaxStep) damaged("the step must lie in 0..2^53");
+  if (clock.step_base < 0 || clock.step_base > clock.step) damaged("step_base must lie in 0..step");
+  if (!std::isfinite(clock.time_base)) damaged("time_base is not finite");
+  const double time = clock.time_base + static_cast<double>(clock.step - clock.step_base) * dt;
+  if (!std::isfinite(time)) damaged(fmt::format("the time, {}, is not finite", time));
 }
 
 void check_header(ByteReader& header, std::size_t file_size, const std::string& what, std::uint32_t& crc,
@@ -170,12 +201,23 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   r.get_into(domain.lo, 3);
   r.get_into(domain.hi, 3);
   const auto h = r.get<double>(), dt = r.get<double>(), rho0 = r.get<double>();
+  Simulation probe;  // the setters' checks, without touching `sim` yet
+  try {
+    probe.set_domain(domain);
+    probe.set_kernel_radius(h);
+    probe.set_timestep(dt);
+    probe.set_rest_density(rho0);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", what, e.what()));
+  }
   Clock clock;
   clock.step = r.get<std::int64_t>();
   clock.step_base = r.get<std::int64_t>();
   clock.time_base = r.get<double>();
+  check_clock(clock, dt, what);
 
   const auto n = r.get<std::uint64_t>();
+  if (n == 0) throw Error(what + ": it holds no particles (the engine never writes such a file)");
   std::vector<std::int64_t> ids;
   r.get_array(ids, n);
   Particles particles;
@@ -185,6 +227,10 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
     throw Error(fmt::format("{}: {}", what, e.what()));
   }
   const auto field_count = r.get<std::uint32_t>();
+  // Each field is one a fix declared: a pipeline has a handful. The bound keeps a damaged
+  // count from costing a quadratic search of the declared names.
+  if (field_count > kMaxFields)
+    throw Error(fmt::format("{}: the field count, {}, is damaged (at most {})", what, field_count, kMaxFields));
   std::vector<std::string> names;
   for (std::uint32_t k = 0; k < field_count; ++k) {
     FieldSpec spec;
@@ -192,6 +238,9 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
     const auto components = r.get<std::uint32_t>();
     if (spec.name.empty() || components < 1 || components > 64)
       throw Error(fmt::format("{}: field {} is damaged (name '{}', {} components)", what, k, spec.name, components));
+    // Declaring a name twice would give the same array, read twice: one of the two is lost.
+    if (std::find(names.begin(), names.end(), spec.name) != names.end())
+      throw Error(fmt::format("{}: field '{}' is saved twice", what, spec.name));
     spec.components = static_cast<int>(components);
     r.require(n * components, sizeof(real));
     FieldId f;
@@ -206,6 +255,8 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   for (const char* core : {"position", "velocity", "mass"})
     if (std::find(names.begin(), names.end(), core) == names.end())
       throw Error(fmt::format("{}: the particles' {} is missing", what, core));
+  // What the run loop guarantees of every step it finishes (it stops at a blow-up), so of
+  // every restart it writes.
   for (std::size_t i = 0; i < n; ++i) {
     const real m = particles.mass()[i];
     if (!(m > 0) || !std::isfinite(m))
@@ -213,27 +264,27 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
     if (!domain.contains(particles.x()[i], particles.y()[i], particles.z()[i]))
       throw Error(fmt::format("{}: particle {} at ({}, {}, {}) is outside the saved domain", what,
                               particles.ids()[i], particles.x()[i], particles.y()[i], particles.z()[i]));
+    if (!std::isfinite(particles.vx()[i]) || !std::isfinite(particles.vy()[i]) || !std::isfinite(particles.vz()[i]))
+      throw Error(fmt::format("{}: particle {} has velocity ({}, {}, {}), not finite", what, particles.ids()[i],
+                              particles.vx()[i], particles.vy()[i], particles.vz()[i]));
   }
 
   const auto state_count = r.get<std::uint32_t>();
   r.require(state_count, 3 * sizeof(std::uint64_t));  // each state has at least its three sizes
   std::vector<SavedFixState> states(state_count);
-  for (auto& s : states) {
+  std::set<std::string> ids_seen;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    SavedFixState& s = states[k];
     s.id = r.get_string();
     s.style = r.get_string();
+    // A state goes to the fix of its id: an empty or repeated id could never be matched.
+    if (s.id.empty() || s.style.empty())
+      throw Error(fmt::format("{}: saved fix state {} is damaged (id '{}', style '{}')", what, k, s.id, s.style));
+    if (!ids_seen.insert(s.id).second) throw Error(fmt::format("{}: fix '{}' has two saved states", what, s.id));
     r.get_array(s.bytes, r.get<std::uint64_t>());
   }
   if (r.left() != 0) throw Error(fmt::format("{}: {} bytes of unexpected data at the end", what, r.left()));
 
-  Simulation probe;  // the setters' checks, without touching `sim` yet
-  try {
-    probe.set_domain(domain);
-    probe.set_kernel_radius(h);
-    probe.set_timestep(dt);
-    probe.set_rest_density(rho0);
-  } catch (const Error& e) {
-    throw Error(fmt::format("{}: {}", what, e.what()));
-  }
   sim.set_domain(domain);
   sim.set_kernel_radius(h);
   sim.set_timestep(dt);

@@ -2,12 +2,16 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <limits>
 #include <spdlog/spdlog.h>
 #include <sstream>
+#include <string_view>
 
 #include "engine/core/error.hpp"
+#include "engine/core/real.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/io/load_particles.hpp"
 #include "engine/core/simulation.hpp"
@@ -16,9 +20,21 @@ namespace pbf {
 
 namespace {
 
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+
 class Reader {
  public:
-  explicit Reader(const std::string& path) : path_(path), in_(path) {
+  explicit Reader(const std::string& path) : path_(path) {
+    // An ifstream opens a directory and fails only at its first read; a device or a pipe
+    // may never end (/dev/zero) or block the open (a FIFO): say what the path is instead.
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (std::filesystem::is_directory(status))
+      throw Error(fmt::format("{}: cannot open scene file: it is a directory", path), true);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+      throw Error(fmt::format("{}: cannot open scene file: it is not a regular file (a device, a pipe or a socket)",
+                              path), true);
+    in_.open(path);
     if (!in_) throw Error(fmt::format("{}: cannot open scene file", path), true);
   }
 
@@ -31,6 +47,8 @@ class Reader {
     std::string text;
     while (std::getline(in_, text)) {
       ++line_;
+      // A UTF-8 byte-order mark, as some Windows editors write, is not part of the data.
+      if (line_ == 1 && text.starts_with(kByteOrderMark)) text.erase(0, kByteOrderMark.size());
       const auto first = text.find_first_not_of(" \t\r");
       if (first == std::string::npos || text[first] == '#') continue;
       tokens.clear();
@@ -38,16 +56,32 @@ class Reader {
       for (std::string w; words >> w;) tokens.push_back(w);
       return true;
     }
+    if (in_.bad()) fail(line_ + 1, "cannot read the file");
     return false;
   }
 
   double number(const std::string& token, const std::string& what) const {
-    const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);
+    // from_chars refuses a leading '+'; skip one, but only before a digit or a point ("+-1").
+    const bool plus = token.size() > 1 && token[0] == '+' && token[1] != '-';
     double value = 0;
-    auto [end, ec] = std::from_chars(begin, token.data() + token.size(), value);
+    auto [end, ec] = std::from_chars(token.data() + plus, token.data() + token.size(), value);
+    if (ec == std::errc::result_out_of_range)
+      fail(line_, fmt::format("{}: '{}' is out of the range of a double", what, token));
     if (ec != std::errc() || end != token.data() + token.size())
       fail(line_, fmt::format("{}: '{}' is not a number", what, token));
     if (!std::isfinite(value)) fail(line_, fmt::format("{}: '{}' is not a finite number", what, token));
+    return value;
+  }
+
+  // A number that becomes particle data (a position, a velocity, h, L), which may be single
+  // precision (-DPBF_REAL=float): there a value beyond its range would become infinite, and
+  // a positive one below it zero.
+  double particle_number(const std::string& token, const std::string& what, bool positive = false) const {
+    const double value = number(token, what);
+    if (std::fabs(value) > static_cast<double>(std::numeric_limits<real>::max()))
+      fail(line_, fmt::format("{}: '{}' is too large for the particle data's precision", what, token));
+    if (positive && value > 0 && !(static_cast<real>(value) > 0))
+      fail(line_, fmt::format("{}: '{}' is too small for the particle data's precision", what, token));
     return value;
   }
 
@@ -81,13 +115,17 @@ SceneFile read_scene_file(const std::string& path) {
       if (got == 0) {
         std::int64_t n = 0;
         auto [end, ec] = std::from_chars(tokens[t].data(), tokens[t].data() + tokens[t].size(), n);
+        if (ec == std::errc::result_out_of_range)
+          reader.fail(reader.line(), fmt::format("particle count N: '{}' is too large", tokens[t]));
         if (ec != std::errc() || end != tokens[t].data() + tokens[t].size())
           reader.fail(reader.line(), fmt::format("particle count N: '{}' is not an integer", tokens[t]));
         if (n <= 0) reader.fail(reader.line(), fmt::format("particle count N must be positive, got {}", n));
         scene.count = n;
         count_line = reader.line();
       } else {
-        header[got] = reader.number(tokens[t], header_names[got]);
+        const bool length = got == 2 || got == 3;  // h and L; the times stay doubles
+        header[got] = length ? reader.particle_number(tokens[t], header_names[got], true)
+                             : reader.number(tokens[t], header_names[got]);
         if (!(header[got] > 0))
           reader.fail(reader.line(), fmt::format("{} must be positive, got {}", header_names[got], header[got]));
       }
@@ -110,7 +148,7 @@ SceneFile read_scene_file(const std::string& path) {
       reader.fail(reader.line(), fmt::format("expected 6 values (x y z vx vy vz), found {}", tokens.size()));
     double p[6];
     static const char* names[6] = {"x", "y", "z", "vx", "vy", "vz"};
-    for (int k = 0; k < 6; ++k) p[k] = reader.number(tokens[k], names[k]);
+    for (int k = 0; k < 6; ++k) p[k] = reader.particle_number(tokens[k], names[k]);
     for (int k = 0; k < 3; ++k)
       if (p[k] < 0 || p[k] > scene.L)
         reader.fail(reader.line(), fmt::format("particle {} at ({}, {}, {}) is outside the domain [0, {}]^3", read,

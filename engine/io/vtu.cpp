@@ -15,6 +15,7 @@
 #include <string_view>
 
 #include "engine/core/error.hpp"
+#include "engine/io/atomic_file.hpp"
 
 namespace pbf {
 
@@ -41,53 +42,6 @@ const char* type_name(VtuType t) {
 }
 
 std::size_t type_size(VtuType t) { return t == VtuType::Float32 ? 4 : 8; }
-
-// Writes PATH.tmp and renames it onto PATH on commit(), so readers (ParaView polling a
-// running simulation) never see a half-written file. Every stdio result is checked: a
-// full disk shows up in fwrite, or only in fclose when the data sat in stdio's buffer.
-class AtomicFile {
- public:
-  explicit AtomicFile(const std::string& path) : path_(path), tmp_(path + ".tmp") {
-    file_ = std::fopen(tmp_.c_str(), "wb");
-    if (!file_) fail("cannot create", errno);
-  }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile() {  // not committed: an error was thrown, leave nothing behind
-    if (file_) {
-      std::fclose(file_);
-      std::remove(tmp_.c_str());
-    }
-  }
-
-  void write(const void* data, std::size_t bytes) {
-    if (bytes && std::fwrite(data, 1, bytes, file_) != bytes) fail("cannot write", errno);
-  }
-  void write(const std::string& text) { write(text.data(), text.size()); }
-
-  void commit() {
-    std::FILE* f = file_;
-    file_ = nullptr;
-    if (std::fclose(f) != 0) {
-      const int err = errno;
-      std::remove(tmp_.c_str());
-      fail("cannot write", err);
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp_, path_, ec);
-    if (ec) {
-      std::remove(tmp_.c_str());
-      throw Error(fmt::format("{}: cannot rename {} onto it: {}", path_, tmp_, ec.message()));
-    }
-  }
-
- private:
-  [[noreturn]] void fail(const char* what, int err) const {
-    throw Error(fmt::format("{}: {} {}: {}", path_, what, tmp_, std::strerror(err)));
-  }
-  std::string path_, tmp_;
-  std::FILE* file_ = nullptr;
-};
 
 void check_array(const std::string& path, const VtuArray& a, std::size_t n) {
   if (a.name.empty()) throw Error(fmt::format("{}: a vtu array needs a name", path));

@@ -11,9 +11,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <iterator>
+#include <new>
 #include <pugixml.hpp>
+#include <set>
 #include <string_view>
 
 #include "engine/core/error.hpp"
@@ -57,10 +58,27 @@ std::string_view trim(std::string_view s) {
 class VtuReader {
  public:
   explicit VtuReader(const std::string& path) : path_(path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open the file");
-    bytes_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) fail("cannot read the file");
+    // fopen succeeds on a directory, which fails only at the first read; a device or a pipe
+    // may never end (/dev/zero) or block the open (a FIFO): say what the path is instead.
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (std::filesystem::is_directory(status)) fail("cannot open the file: it is a directory");
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+      fail("cannot open the file: it is not a regular file (a device, a pipe or a socket)");
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) fail(fmt::format("cannot open the file ({})", std::strerror(errno)));
+    char buffer[65536];
+    bool failed = false;
+    try {  // the whole file is held in memory: one larger than the memory is an error too
+      for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, f)) > 0;) bytes_.append(buffer, got);
+      failed = std::ferror(f);
+    } catch (const std::bad_alloc&) {
+      std::fclose(f);
+      fail(fmt::format("cannot read the file: at {} bytes it does not fit in memory", bytes_.size()));
+    }
+    const int error = errno;
+    std::fclose(f);
+    if (failed) fail(fmt::format("cannot read the file ({})", std::strerror(error)));
     if (bytes_.empty()) fail("empty file");
   }
 
@@ -97,10 +115,11 @@ class VtuReader {
     const auto points = piece.child("Points").child("DataArray");
     if (!points) fail_at(piece, "no <Points> with a <DataArray>: the file has no particle positions");
     table.columns.push_back(read_array(points, "position", "the Points array", 3));
+    std::set<std::string> names{"position"};  // a set: many arrays cost no quadratic search
     for (const auto& a : piece.child("PointData").children("DataArray")) {
       const std::string name = a.attribute("Name").value();
       if (name.empty()) fail_at(a, "a PointData DataArray has no Name");
-      if (table.find(name))
+      if (!names.insert(name).second)
         fail_at(a, fmt::format("PointData array '{}' appears twice (or clashes with the Points, read as 'position')",
                                name));
       table.columns.push_back(read_array(a, name, fmt::format("PointData array '{}'", name)));
@@ -151,6 +170,37 @@ class VtuReader {
     if (appended && encoding != "raw" && encoding != "base64")
       fail_at(appended, fmt::format("AppendedData encoding \"{}\" is not supported (raw or base64)", encoding));
     base64_block_ = encoding == "base64";
+    if (block_begin_ != 0) collect_offsets();
+  }
+
+  // The offsets of every appended DataArray (those of <Cells> too, which are not read):
+  // an array's block runs from its offset to the next one, so each block can be checked to
+  // hold exactly the header and the bytes its array needs. That is how a header_type that
+  // disagrees with the data is caught, rather than read as shifted, wrong numbers.
+  void collect_offsets() {
+    struct Walker : pugi::xml_tree_walker {  // pugixml walks iteratively: deep XML is no danger
+      VtuReader* reader;
+      bool for_each(pugi::xml_node& node) override {
+        const std::string_view name = node.name(), format = node.attribute("format").value();
+        if (name != "DataArray" || format != "appended") return true;
+        const auto offset = reader->unsigned_attribute(node, "offset");
+        if (!reader->offsets_.insert(offset).second)
+          reader->fail_at(node, fmt::format("two DataArrays start at offset {} of the appended data", offset));
+        return true;
+      }
+    } walker;
+    walker.reader = this;
+    doc_.traverse(walker);
+  }
+
+  // The bytes (raw) or characters (base64) of the appended block at `offset`, up to the
+  // next block; `last`: no block follows.
+  std::string_view appended_block(std::uint64_t offset, bool& last) const {
+    const std::size_t size = block_end_ - block_begin_;
+    const auto next = offsets_.upper_bound(offset);
+    last = next == offsets_.end() || *next >= size;
+    const std::size_t end = last ? size : *next;
+    return std::string_view(bytes_).substr(block_begin_ + offset, end - offset);
   }
 
   void locate_block(std::size_t p) {
@@ -197,24 +247,24 @@ class VtuReader {
       return c;
     }
     std::string_view data;
-    std::string decoded;
-    // base64: the size header first, so a wrong size is reported as such before the rest.
-    auto from_base64 = [&](std::string_view text) {
-      payload(a, base64(a, text, header_size_, what), bytes, what, true);
-      decoded = base64(a, text, header_size_ + bytes, what);
-      return payload(a, decoded, bytes, what);
+    std::string decoded;  // base64 data, decoded; `data` views it
+    auto from_base64 = [&](std::string_view text, bool followed) {
+      decoded = base64(a, text, what);
+      return payload(a, decoded, bytes, what, false, followed);
     };
     if (format == "binary") {  // inline base64
-      data = from_base64(a.child_value());
+      data = from_base64(a.child_value(), false);
     } else if (format == "appended") {
       if (block_begin_ == 0)
         fail_at(a, fmt::format("{} is format=\"appended\" but the file has no appended data", what));
       const auto offset = unsigned_attribute(a, "offset");
-      const std::size_t block = block_end_ - block_begin_;
-      if (offset >= block)
-        fail_at(a, fmt::format("{}: offset {} is beyond the appended data ({} bytes)", what, offset, block));
-      const auto rest = std::string_view(bytes_).substr(block_begin_ + offset, block - offset);
-      data = base64_block_ ? from_base64(rest) : payload(a, rest, bytes, what);
+      const std::size_t size = block_end_ - block_begin_;
+      if (offset >= size)
+        fail_at(a, fmt::format("{}: offset {} is beyond the appended data ({} bytes)", what, offset, size));
+      bool last = false;
+      const std::string_view block = appended_block(offset, last);
+      // Raw data end in the whitespace before </AppendedData>; base64 skips whitespace anyway.
+      data = base64_block_ ? from_base64(block, !last) : payload(a, block, bytes, what, last, !last);
     } else {
       fail_at(a, fmt::format("{} has format \"{}\" (expected appended, binary or ascii)", what, format));
     }
@@ -223,38 +273,61 @@ class VtuReader {
     return c;
   }
 
-  // The data of one binary block, after its byte-count header, checked against the size
-  // the array must have. `header_only`: the block may hold just the header so far.
+  // Whether `block` is a size header of `header` bytes announcing `expected` bytes, then
+  // those bytes, then nothing but (if `trailing_space`) whitespace.
+  static bool block_fits(std::string_view block, std::size_t header, std::size_t expected, bool trailing_space) {
+    if (block.size() < header) return false;
+    std::uint64_t size = 0;
+    std::memcpy(&size, block.data(), header);  // little-endian: the low bytes first
+    if (size != expected || block.size() - header < size) return false;
+    const std::string_view rest = block.substr(header + size);
+    return rest.empty() || (trailing_space && trim(rest).empty());
+  }
+
+  // The data of one binary block: a byte count (of header_type), then that many bytes,
+  // which must be the `expected` bytes the array needs, and nothing more. Each mismatch
+  // gets its own message; one explained by the other header size names the header_type.
+  // `followed`: the block ends where another array's starts (appended data).
   std::string_view payload(pugi::xml_node a, std::string_view block, std::size_t expected, const std::string& what,
-                           bool header_only = false) const {
+                           bool trailing_space, bool followed) const {
+    if (block_fits(block, header_size_, expected, trailing_space)) return block.substr(header_size_, expected);
+    const std::size_t other = header_size_ == 4 ? 8 : 4;
+    if (block_fits(block, other, expected, trailing_space))
+      fail_at(a, fmt::format("{}: header_type=\"{}\" says block sizes are {}-byte numbers, but the data have "
+                             "{}-byte ones: the header_type does not match the data (it should be \"{}\")",
+                             what, header_name(header_size_), header_size_, other, header_name(other)));
     if (block.size() < header_size_) fail_at(a, fmt::format("truncated file: {} ends inside its size header", what));
     std::uint64_t size = 0;
-    std::memcpy(&size, block.data(), header_size_);  // little-endian: the low bytes first
+    std::memcpy(&size, block.data(), header_size_);
     if (size != expected)
       fail_at(a, fmt::format("{} holds {} bytes, but NumberOfPoints = {} needs {}", what, size, n_, expected));
-    if (!header_only && block.size() - header_size_ < size)
+    if (block.size() - header_size_ < size && followed)
+      fail_at(a, fmt::format("{} needs {} bytes, but the next array's data start after {} (their offsets overlap)",
+                             what, size, block.size() - header_size_));
+    if (block.size() - header_size_ < size)
       fail_at(a, fmt::format("truncated file: {} needs {} bytes, only {} are there", what, size,
                              block.size() - header_size_));
-    return block.substr(header_size_, size);
+    fail_at(a, fmt::format("{}: its block holds {} bytes after the {} its size header announces (blocks overlap, or "
+                           "the header_type does not match the data)",
+                           what, block.size() - header_size_ - size, size));
   }
+
+  static const char* header_name(std::size_t size) { return size == 4 ? "UInt32" : "UInt64"; }
 
   // Decodes base64 four characters at a time, allowing '=' padding at the end of any
   // quantum: VTK encodes the size header and the data as two base64 runs, other writers as
-  // one; both decode to the same bytes this way. Stops once `want` bytes are out.
-  std::string base64(pugi::xml_node a, std::string_view text, std::size_t want, const std::string& what) const {
-    if (want > text.size() / 4 * 3 + 3)  // check before allocating
-      fail_at(a, fmt::format("truncated file: {} needs {} bytes but holds at most {}", what, want,
-                             text.size() / 4 * 3));
+  // one; both decode to the same bytes this way. Whitespace is skipped.
+  std::string base64(pugi::xml_node a, std::string_view text, const std::string& what) const {
+    static constexpr std::string_view alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
-    out.reserve(want);
+    out.reserve(text.size() / 4 * 3);
     int q[4], k = 0;
-    for (std::size_t i = 0; i < text.size() && out.size() < want; ++i) {
-      const char ch = text[i];
+    for (const char ch : text) {
       if (is_space(ch)) continue;
-      const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-      const char* pos = ch ? std::strchr(alphabet, ch) : nullptr;
-      if (!pos && ch != '=') fail_at(a, fmt::format("{}: '{}' is not a base64 character", what, ch));
-      q[k++] = pos ? static_cast<int>(pos - alphabet) : -1;
+      const auto pos = alphabet.find(ch);
+      if (pos == std::string_view::npos && ch != '=')
+        fail_at(a, fmt::format("{}: '{}' is not a base64 character", what, printable(ch)));
+      q[k++] = pos == std::string_view::npos ? -1 : static_cast<int>(pos);
       if (k < 4) continue;
       k = 0;
       if (q[0] < 0 || q[1] < 0 || (q[2] < 0 && q[3] >= 0)) fail_at(a, fmt::format("{}: misplaced base64 '='", what));
@@ -262,8 +335,15 @@ class VtuReader {
       if (q[2] >= 0) out += static_cast<char>((q[1] & 15) << 4 | q[2] >> 2);
       if (q[3] >= 0) out += static_cast<char>((q[2] & 3) << 6 | q[3]);
     }
-    if (out.size() > want) out.resize(want);
+    if (k != 0)
+      fail_at(a, fmt::format("truncated file: {} ends inside a group of four base64 characters", what));
     return out;
+  }
+
+  // A character for a message: itself if printable ASCII, else its code.
+  static std::string printable(char ch) {
+    const auto u = static_cast<unsigned char>(ch);
+    return u >= 0x20 && u < 0x7f ? std::string(1, ch) : fmt::format("\\x{:02x}", u);
   }
 
   std::vector<double> ascii(pugi::xml_node a, const char* text, std::size_t count, const std::string& what) const {
@@ -282,8 +362,11 @@ class VtuReader {
       if (values.size() == count)
         fail_at(a, fmt::format("{} holds more than the {} values NumberOfPoints = {} needs", what, count, n_));
       double v = 0;
-      const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);  // from_chars refuses '+'
-      const auto [end, ec] = std::from_chars(begin, token.data() + token.size(), v);
+      // from_chars refuses a leading '+'; skip one, but only before a digit or a point ("+-1").
+      const bool plus = token.size() > 1 && token[0] == '+' && token[1] != '-';
+      const auto [end, ec] = std::from_chars(token.data() + plus, token.data() + token.size(), v);
+      if (ec == std::errc::result_out_of_range)
+        fail_at(a, fmt::format("{}: '{}' is out of the range of a double", what, token.substr(0, 40)));
       if (ec != std::errc() || end != token.data() + token.size())
         fail_at(a, fmt::format("{}: '{}' is not a number", what, token.substr(0, 40)));
       values.push_back(v);
@@ -298,6 +381,7 @@ class VtuReader {
   std::string bytes_;  // the whole file
   pugi::xml_document doc_;
   std::size_t block_begin_ = 0, block_end_ = 0;  // the appended data, after '_'; 0: none
+  std::set<std::uint64_t> offsets_;               // where its blocks start
   bool base64_block_ = false;
   std::size_t header_size_ = 4;
   std::uint64_t n_ = 0;

@@ -13,7 +13,7 @@ std::vector<ParamSpec> Dump::params(const std::string& default_path, const Names
        "file name pattern; '*' becomes the frame number, 00000, 00001, ... (directories are created)"}};
   if (!default_fields.empty())
     p.push_back({"fields", ParamType::StringList, default_fields, "",
-                 "per-particle fields: position, velocity, mass, id, density, density_error, speed, "
+                 "per-particle fields: position, velocity, mass, id, density, density_error, summed_density, speed, "
                  "vorticity_magnitude, or any field a fix declares"});
   for (auto& s : OutputSchedule::params("frames")) p.push_back(std::move(s));
   return p;
@@ -30,7 +30,7 @@ std::string Dump::frame_path(std::int64_t frame) const { return pattern_.with(fm
 void Dump::init(Simulation& sim) {
   fields_.resolve(sim);
   pattern_.create_directory();
-  schedule_.start(sim);
+  schedule_.start(sim, fmt::format("fix '{}' ({})", id(), style()));
   end_of_step(sim);  // frame 0: the state the run starts from
 }
 

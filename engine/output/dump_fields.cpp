@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/names.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/sph/velocity_curl.hpp"
 
@@ -19,6 +20,7 @@ struct Derived {
 constexpr Derived kDerived[] = {{"id", ""},
                                 {"density", "kg/m^3"},
                                 {"density_error", ""},
+                                {"summed_density", "kg/m^3"},
                                 {"speed", "m/s"},
                                 {"vorticity_magnitude", "1/s"}};
 
@@ -48,9 +50,9 @@ void DumpFields::resolve(const Simulation& sim) {
     } else if (derived(name)) {
       components_.push_back(1);
     } else {
-      std::string valid;
-      for (const auto& v : valid_names(sim)) valid += (valid.empty() ? "" : ", ") + v;
-      throw Error(fmt::format("unknown field '{}'; valid fields: {}", name, valid));
+      const auto valid = valid_names(sim);
+      throw Error(fmt::format("unknown field '{}'{}; valid fields: {}", name, did_you_mean(name, valid),
+                              fmt::join(valid, ", ")));
     }
   }
 }
@@ -72,12 +74,16 @@ void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) 
   std::vector<const real*> columns;
   if (const auto f = P.find(name)) {
     for (int c = 0; c < nc; ++c) columns.push_back(P.data(*f, c));
-  } else if (name == "density" || name == "density_error") {
+  } else if (name == "density") {  // no solver keeps a density field: the SPH sum
+    columns = {sim.solver_density()};
+  } else if (name == "summed_density") {
     sim.refresh_neighbors();
-    const std::vector<real>& rho = sim.density();
+    columns = {sim.summed_density().data()};
+  } else if (name == "density_error") {
+    const real* rho = sim.solver_density();
     scratch_.resize(n);
     const real inverse = real(1 / sim.rest_density());
-    for (std::size_t i = 0; i < n; ++i) scratch_[i] = name == "density" ? rho[i] : rho[i] * inverse - 1;
+    for (std::size_t i = 0; i < n; ++i) scratch_[i] = rho[i] * inverse - 1;
     columns = {scratch_.data()};
   } else if (name == "speed") {
     scratch_.resize(n);
@@ -86,7 +92,7 @@ void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) 
     columns = {scratch_.data()};
   } else if (name == "vorticity_magnitude") {
     sim.refresh_neighbors();
-    const std::vector<real>& rho = sim.density();
+    const std::vector<real>& rho = sim.summed_density();
     std::vector<real> w(3 * n);
     scratch_.resize(n);
     velocity_curl(sim, rho, w.data(), w.data() + n, w.data() + 2 * n, scratch_.data());

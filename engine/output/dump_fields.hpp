@@ -1,9 +1,12 @@
 #pragma once
 // The per-particle quantities a dump can write, by name: every declared field (position,
 // velocity, mass, and whatever the pipeline's fixes add, such as lambda or vorticity), the
-// particle id, and quantities derived when the frame is written: density, density_error
-// (rho/rho0 - 1), speed (|v|) and vorticity_magnitude (|curl v|). Values come out in id
-// order, the order of the input, so frames of one run line up particle by particle.
+// particle id, and quantities derived when the frame is written: density and density_error
+// (rho/rho0 - 1) of the density the solver uses (Simulation::solver_density: wcsph's own
+// density field, else the SPH sum), summed_density (the SPH sum with walls, which differs
+// from the solver's under wcsph's continuity density), speed (|v|) and vorticity_magnitude
+// (|curl v|). Values come out in id order, the order of the input, so frames of one run line
+// up particle by particle.
 #include <cstdint>
 #include <string>
 #include <vector>

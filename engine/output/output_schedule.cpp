@@ -1,5 +1,7 @@
 #include "engine/output/output_schedule.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "engine/core/error.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
@@ -7,22 +9,32 @@
 namespace pbf {
 
 std::vector<ParamSpec> OutputSchedule::params(const char* what) {
-  return {{"interval", ParamType::Real, 0.0, "s", std::string("simulated time between ") + what + " (or use 'every')"},
-          {"every", ParamType::Integer, std::int64_t{0}, "steps",
-           std::string("steps between ") + what + " (or use 'interval')"}};
+  return {ParamSpec{"interval", ParamType::Real, 0.0, "s", std::string("simulated time between ") + what +
+                                                              " (or use 'every')"}
+              .at_least(0),
+          ParamSpec{"every", ParamType::Integer, std::int64_t{0}, "steps",
+                    std::string("steps between ") + what + " (or use 'interval')"}
+              .at_least(0)};
 }
 
 OutputSchedule::OutputSchedule(const Params& p, bool at_start)
     : interval_(p.real("interval")), every_(p.integer("every")), at_start_(at_start) {
-  if (interval_ < 0 || every_ < 0) throw Error("'interval' and 'every' must be >= 0");
   if ((interval_ > 0) == (every_ > 0)) throw Error("give exactly one of 'interval' (seconds) or 'every' (steps)");
 }
 
-void OutputSchedule::start(const Simulation& sim) {
+void OutputSchedule::start(const Simulation& sim, const std::string& owner) {
   if (started_) return;
   started_ = true;
   start_time_ = sim.time();
   start_step_ = sim.step();
+  const auto& plan = sim.run_plan();
+  if (owner.empty()) return;
+  if (every_ > 0 && static_cast<double>(every_) > plan.steps)
+    spdlog::warn("{}: 'every' = {} steps is longer than the run ({:.0f} steps): no output after the start", owner,
+                 every_, plan.steps);
+  if (interval_ > 0 && start_time_ + interval_ > plan.end_time * (1 + 1e-9))
+    spdlog::warn("{}: 'interval' = {} s is longer than the run ({} s): no output after the start", owner, interval_,
+                 plan.end_time - start_time_);
 }
 
 bool OutputSchedule::due(const Simulation& sim) const {

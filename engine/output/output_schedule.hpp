@@ -4,6 +4,7 @@
 // a relative 1e-9, so an interval that is a multiple of dt hits its steps exactly); never
 // twice in one step. Its counters are fix state: restarts carry them on.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "engine/registry/params.hpp"
@@ -22,8 +23,11 @@ class OutputSchedule {
   // one interval later (a restart of the initial state would be useless).
   OutputSchedule(const Params& p, bool at_start);
 
-  // Called in the fix's init: the first start fixes the time origin of the intervals.
-  void start(const Simulation& sim);
+  // Called in the fix's init: the first start fixes the time origin of the intervals. With an
+  // `owner` (the fix, for the message) it warns when the first output after the start falls
+  // beyond the end of the run: a frame interval longer than the run is most likely a slip of
+  // the unit. (Restarts pass none: they are insurance, and a short run needs none.)
+  void start(const Simulation& sim, const std::string& owner = "");
   bool due(const Simulation& sim) const;
   void done(const Simulation& sim);  // an output was written at this step
   // Outputs written so far (the next dump frame's number).

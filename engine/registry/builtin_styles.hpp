@@ -6,6 +6,11 @@
 
 namespace pbf {
 
+// Limits several styles share (SI units): beyond them a value is a slip of the unit rather
+// than a fluid the engine can step.
+inline constexpr double kMostAcceleration = 1e4;  // m/s^2, about 1000 g
+inline constexpr double kMostSoundSpeed = 1e4;    // m/s, faster than sound in steel
+
 // The factory of a compute style whose constructor takes (id, params).
 template <class T>
 auto make_compute() {

@@ -1,9 +1,11 @@
 #include "engine/registry/params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/names.hpp"
 
 namespace pbf {
 
@@ -85,15 +87,55 @@ std::string names_of(const std::vector<ParamSpec>& schema) {
   return names.empty() ? "(none)" : names;
 }
 
+void check_range(const std::string& what, const ParamSpec& spec, const ParamValue& value) {
+  auto check = [&](double v) {
+    if (spec.range.contains(v)) return;
+    const std::string range = spec.range.text();
+    throw Error(fmt::format("{}: parameter '{}' must be {}{}{}, got {}", what, spec.name,
+                            range[0] == '[' || range[0] == '(' ? "in " : "", range,
+                            spec.unit.empty() ? "" : " " + spec.unit, format_value(value)));
+  };
+  if (auto* d = std::get_if<double>(&value)) check(*d);
+  if (auto* i = std::get_if<std::int64_t>(&value)) check(static_cast<double>(*i));
+  if (auto* v = std::get_if<Vec3>(&value))
+    for (double c : *v) check(c);
+  if (auto* text = std::get_if<std::string>(&value);
+      text && !spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), *text) == spec.choices.end())
+    throw Error(fmt::format("{}: parameter '{}' must be one of {}, got \"{}\"{}", what, spec.name, spec.allowed(), *text,
+                            did_you_mean(*text, spec.choices)));
+}
+
 }  // namespace
+
+std::string Range::text() const {
+  const bool low = lo != -std::numeric_limits<double>::infinity(), high = hi != std::numeric_limits<double>::infinity();
+  if (low && high) return fmt::format("{}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+  if (low) return fmt::format("{} {}", lo_open ? ">" : ">=", lo);
+  if (high) return fmt::format("{} {}", hi_open ? "<" : "<=", hi);
+  return "any";
+}
+
+std::string ParamSpec::allowed() const {
+  if (!choices.empty()) {
+    std::string text;
+    for (std::size_t k = 0; k < choices.size(); ++k)
+      text += fmt::format("{}\"{}\"", k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ", choices[k]);
+    return text;
+  }
+  return range.limited() ? range.text() : "-";
+}
 
 Params::Params(const std::string& what, const std::vector<ParamSpec>& schema, const GivenParams& given) {
   for (const auto& [name, value] : given) {
     const ParamSpec* spec = nullptr;
     for (const auto& s : schema)
       if (s.name == name) spec = &s;
-    if (!spec)
-      throw Error(fmt::format("{}: unknown parameter '{}'; valid parameters: {}", what, name, names_of(schema)));
+    if (!spec) {
+      std::vector<std::string> valid;
+      for (const auto& s : schema) valid.push_back(s.name);
+      throw Error(fmt::format("{}: unknown parameter '{}'{}; valid parameters: {}", what, name,
+                              did_you_mean(name, valid), names_of(schema)));
+    }
     if (values_.count(name)) throw Error(fmt::format("{}: parameter '{}' given twice", what, name));
     auto converted = coerce(value, spec->type);
     if (!converted)
@@ -104,6 +146,7 @@ Params::Params(const std::string& what, const std::vector<ParamSpec>& schema, co
     if (auto* v = std::get_if<Vec3>(&*converted))
       for (double c : *v)
         if (!std::isfinite(c)) throw Error(fmt::format("{}: parameter '{}' must be finite", what, name));
+    check_range(what, *spec, *converted);
     values_[name] = *converted;
   }
   for (const auto& spec : schema) {

@@ -3,6 +3,7 @@
 // values given by a script are checked against it before the style is constructed.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -21,6 +22,16 @@ using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, N
 
 std::string format_value(const ParamValue& value);
 
+// The values a number may take: checked with the type (for a vector, each component), shown
+// by `pbfengine help`. An open end excludes its bound ("> 0" rather than ">= 0").
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false, hi_open = false;
+  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
+  bool limited() const { return lo != -std::numeric_limits<double>::infinity() || hi != std::numeric_limits<double>::infinity(); }
+  std::string text() const;  // "[0, 1]", "> 0", "(0, 1]", ...
+};
+
 struct ParamSpec {
   std::string name;
   ParamType type;
@@ -28,6 +39,27 @@ struct ParamSpec {
   std::string unit;                         // "" for dimensionless
   std::string doc;                          // one line
   bool optional = false;                    // no default, and may be left out (Params::has)
+  Range range{};                            // numbers outside are refused (default: any finite)
+  std::vector<std::string> choices{};       // a string must be one of these (empty: any)
+
+  // The range, written where the schema lists the parameter: {...}.within(0, 1).
+  ParamSpec within(double lo, double hi) && { return with_range({lo, hi, false, false}); }
+  ParamSpec at_least(double lo) && { return with_range({lo, Range{}.hi, false, false}); }
+  ParamSpec above(double lo) && { return with_range({lo, Range{}.hi, true, false}); }
+  ParamSpec above_within(double lo, double hi) && { return with_range({lo, hi, true, false}); }  // (lo, hi]
+  ParamSpec magnitude_at_most(double most) && { return with_range({-most, most, false, false}); }
+  ParamSpec one_of(std::vector<std::string> names) && {
+    choices = std::move(names);
+    return std::move(*this);
+  }
+  // The range or the choices, as `pbfengine help` shows them ("-" for none).
+  std::string allowed() const;
+
+ private:
+  ParamSpec with_range(Range r) {
+    range = r;
+    return std::move(*this);
+  }
 };
 
 // Values as the script gave them (numbers keep their Lua integer/float distinction).

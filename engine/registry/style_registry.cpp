@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/names.hpp"
 
 namespace pbf {
 
@@ -33,10 +34,11 @@ const StyleInfo* StyleRegistry::find(const std::string& name) const {
 const StyleInfo& StyleRegistry::require(const std::string& style, StyleKind kind) const {
   const StyleInfo* info = find(style);
   if (!info || info->kind != kind) {
-    std::string valid;
+    std::vector<std::string> valid;
     for (const auto& s : styles_)
-      if (s.kind == kind) valid += (valid.empty() ? "" : ", ") + s.name;
-    throw Error(fmt::format("unknown {} style '{}'; valid {} styles: {}", kind_name(kind), style, kind_name(kind), valid));
+      if (s.kind == kind) valid.push_back(s.name);
+    throw Error(fmt::format("unknown {} style '{}'{}; valid {} styles: {}", kind_name(kind), style,
+                            did_you_mean(style, valid), kind_name(kind), fmt::join(valid, ", ")));
   }
   return *info;
 }
@@ -75,14 +77,18 @@ std::string StyleRegistry::help() const {
 
 std::string StyleRegistry::help(const std::string& style) const {
   const StyleInfo* info = find(style);
-  if (!info) throw Error(fmt::format("unknown style '{}'; 'pbfengine help' lists them", style));
+  if (!info) {
+    std::vector<std::string> names;
+    for (const auto& s : styles_) names.push_back(s.name);
+    throw Error(fmt::format("unknown style '{}'{}; 'pbfengine help' lists them", style, did_you_mean(style, names)));
+  }
   std::string out = fmt::format("{} {}: {}\n", kind_name(info->kind), info->name, info->summary);
   if (info->params.empty()) return out + "  (no parameters)\n";
-  out += "Parameters (name, type, default, unit: description):\n";
+  out += "Parameters (name, type, default, unit, range: description):\n";
   for (const auto& p : info->params)
-    out += fmt::format("  {:<14} {:<16} {:<20} {:<8} {}\n", p.name, type_name(p.type),
+    out += fmt::format("  {:<14} {:<16} {:<20} {:<8} {:<14} {}\n", p.name, type_name(p.type),
                        p.default_value ? format_value(*p.default_value) : p.optional ? "(optional)" : "(required)",
-                       p.unit.empty() ? "-" : p.unit, p.doc);
+                       p.unit.empty() ? "-" : p.unit, p.allowed(), p.doc);
   return out;
 }
 
@@ -106,12 +112,12 @@ std::string StyleRegistry::markdown_reference() const {
         out += "No parameters.\n";
         continue;
       }
-      out += "| parameter | type | default | unit | meaning |\n|---|---|---|---|---|\n";
+      out += "| parameter | type | default | unit | range | meaning |\n|---|---|---|---|---|---|\n";
       for (const auto& p : s.params)
-        out += fmt::format("| `{}` | {} | {} | {} | {} |\n", p.name, type_name(p.type),
+        out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", p.name, type_name(p.type),
                            p.default_value ? fmt::format("`{}`", format_value(*p.default_value))
                            : std::string(p.optional ? "optional" : "required"),
-                           p.unit.empty() ? "-" : p.unit, cell(p.doc));
+                           p.unit.empty() ? "-" : p.unit, p.allowed(), cell(p.doc));
     }
   }
   return out;

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "engine/core/error.hpp"
+#include "engine/io/atomic_file.hpp"
 #include "engine/render/image_text.hpp"
 
 namespace pbf {
@@ -33,6 +34,14 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
 double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
 bool finite(const Vec3& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
+// a / |a| for any finite non-zero a: where |a|^2 would overflow or underflow (a camera 1e300 m
+// away), a is first scaled by its largest component.
+Vec3 unit(const Vec3& a) {
+  const double n = norm(a);
+  if (n > 0 && std::isfinite(n)) return scaled(a, 1 / n);
+  const Vec3 b = scaled(a, 1 / std::max({std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2])}));
+  return scaled(b, 1 / norm(b));
+}
 
 // Text and lines are dark on a light background and light on a dark one.
 Rgb ink_for(const Rgb& background) {
@@ -81,12 +90,13 @@ struct Camera {
     const double bounding_radius = std::max(0.5 * norm(sub(hi, lo)), 1e-12);
     const Vec3 target = spec.center.value_or(mid);
     forward = spec.eye ? sub(target, *spec.eye) : spec.direction;
-    if (!(norm(forward) > 0) || !finite(forward)) throw Error("image: the camera position is the point it looks at");
-    forward = scaled(forward, 1 / norm(forward));
-    if (norm(cross(forward, spec.up)) <= 1e-3 * norm(spec.up))
+    if (forward == Vec3{0, 0, 0} || !finite(forward)) throw Error("image: the camera position is the point it looks at");
+    forward = unit(forward);
+    if (norm(cross(forward, unit(spec.up))) <= 1e-3)
       throw Error("image: the camera looks along 'up'; choose another 'up' or camera position");
     right = cross(forward, spec.up);
-    right = scaled(right, 1 / norm(right));
+    if (!finite(right)) right = cross(forward, unit(spec.up));  // an 'up' of 1e308 overflows
+    right = unit(right);
     up = cross(right, forward);
     cx = 0.5 * scene_width;
     cy = 0.5 * spec.height;
@@ -330,12 +340,12 @@ ImageRenderer::ImageRenderer(const ImageSpec& spec) : spec_(spec), colormap_(spe
     throw Error(fmt::format("image: zoom must be > 0, got {}", spec.zoom));
   if (!(spec.radius > 0) || !std::isfinite(spec.radius))
     throw Error(fmt::format("image: radius (of the particle spheres, m) must be > 0, got {}", spec.radius));
-  if (!finite(spec.direction) || norm(spec.direction) == 0)
+  if (!finite(spec.direction) || spec.direction == Vec3{0, 0, 0})
     throw Error("image: direction must be a finite non-zero vector");
-  if (!finite(spec.up) || norm(spec.up) == 0) throw Error("image: up must be a finite non-zero vector");
+  if (!finite(spec.up) || spec.up == Vec3{0, 0, 0}) throw Error("image: up must be a finite non-zero vector");
   // Parallel (the sine of the angle below 1e-3) leaves the camera's roll undefined.
   // (With a camera position, the direction is from it to the centre, checked when drawing.)
-  if (!spec.eye && norm(cross(spec.direction, spec.up)) <= 1e-3 * norm(spec.direction) * norm(spec.up))
+  if (!spec.eye && norm(cross(unit(spec.direction), unit(spec.up))) <= 1e-3)
     throw Error("image: direction must not be parallel to up");
   if (spec.center && !finite(*spec.center)) throw Error("image: center must be finite");
   if (spec.eye && !finite(*spec.eye)) throw Error("image: the camera position must be finite");
@@ -378,8 +388,17 @@ void ImageRenderer::render(const Domain& domain, const real* x, const real* y, c
 void write_png(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
   if (width <= 0 || height <= 0 || rgb.size() != static_cast<std::size_t>(width) * height * 3)
     throw Error(fmt::format("image: cannot write {}: the data are not a {}x{} RGB image", path, width, height));
-  if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3))
-    throw Error(fmt::format("image: cannot write the PNG file {}", path));
+  // Encoded in memory, then written whole: stb's own file writer does not check its writes,
+  // and a full disk would leave a cut-off picture under the final name.
+  std::string png;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, 3, rgb.data(), width * 3))
+    throw Error(fmt::format("image: cannot encode the PNG file {}", path));
+  AtomicFile file(path);
+  file.write(png);
+  file.commit();
 }
 
 }  // namespace pbf

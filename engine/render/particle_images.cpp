@@ -11,16 +11,14 @@
 namespace pbf {
 
 std::vector<ParamSpec> ParticleImages::params() {
-  std::string maps;
-  for (const auto& m : Colormap::names()) maps += (maps.empty() ? "" : ", ") + m;
   return {
       {"color", ParamType::String, std::string("speed"), "",
        "field that sets the colour (a dump field; a vector field is coloured by its magnitude)"},
-      {"colormap", ParamType::String, std::string("viridis"), "", "colour map: " + maps},
+      ParamSpec{"colormap", ParamType::String, std::string("viridis"), "", "colour map"}.one_of(Colormap::names()),
       {"min", ParamType::Real, 0.0, "field unit", "value at the bottom of the colour scale (min = max: each frame's range)"},
       {"max", ParamType::Real, 0.0, "field unit", "value at the top of the colour scale"},
-      {"width", ParamType::Integer, std::int64_t{800}, "pixels", "image width"},
-      {"height", ParamType::Integer, std::int64_t{600}, "pixels", "image height"},
+      ParamSpec{"width", ParamType::Integer, std::int64_t{800}, "pixels", "image width"}.within(16, 8192),
+      ParamSpec{"height", ParamType::Integer, std::int64_t{600}, "pixels", "image height"}.within(16, 8192),
       {"direction", ParamType::Vector3, Vec3{-1, -2, -1}, "", "view direction, from the camera toward the centre"},
       {"up", ParamType::Vector3, Vec3{0, 0, 1}, "", "the direction that points up in the image"},
       {"center", ParamType::Vector3, std::nullopt, "m", "point the camera looks at (default: the domain's centre)", true},
@@ -28,16 +26,15 @@ std::vector<ParamSpec> ParticleImages::params() {
        "camera position, looking at the centre ('direction' is then unused; default: back along 'direction', "
        "far enough to see the whole domain)",
        true},
-      {"zoom", ParamType::Real, 1.0, "", "magnification; 1 shows the whole domain"},
-      {"radius", ParamType::Real, 0.0, "m", "sphere radius drawn per particle (0: 0.55 of the particle spacing)"},
+      ParamSpec{"zoom", ParamType::Real, 1.0, "", "magnification; 1 shows the whole domain"}.above(0),
+      ParamSpec{"radius", ParamType::Real, 0.0, "m", "sphere radius drawn per particle (0: 0.55 of the particle spacing)"}
+          .at_least(0),
       {"box", ParamType::Bool, true, "", "draw the domain's edges"},
       {"colorbar", ParamType::Bool, true, "", "draw the labelled colour bar"}};
 }
 
 ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")}), min_(p.real("min")), max_(p.real("max")) {
   if (min_ > max_) throw Error(fmt::format("'min' ({}) must not exceed 'max' ({})", min_, max_));
-  if (p.integer("width") < 16 || p.integer("width") > 8192 || p.integer("height") < 16 || p.integer("height") > 8192)
-    throw Error("'width' and 'height' must be 16 to 8192 pixels");
   spec_.width = static_cast<int>(p.integer("width"));
   spec_.height = static_cast<int>(p.integer("height"));
   spec_.direction = p.vec3("direction");
@@ -46,7 +43,6 @@ ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")
   if (p.has("position")) spec_.eye = p.vec3("position");
   spec_.zoom = p.real("zoom");
   spec_.radius = p.real("radius");
-  if (spec_.radius < 0) throw Error("'radius' must be >= 0");
   spec_.colormap = p.string("colormap");
   spec_.draw_box = p.boolean("box");
   spec_.colorbar = p.boolean("colorbar");

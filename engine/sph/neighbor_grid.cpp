@@ -30,17 +30,16 @@ std::size_t NeighborGrid::cell_of(real x, real y, real z) const {
 
 void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h) {
   // Cells at least h wide; widen them when the box would need more cells than the cap.
+  // Counted in double until they fit: a huge domain over a tiny h must not overflow a long.
   cell_size_ = h;
   const double cap = static_cast<double>(max_cells(n));
+  auto cells_along = [&](int a) { return std::max(1.0, std::ceil(domain.extent(a) / cell_size_)); };
   for (;;) {
-    double total = 1;
-    for (int a = 0; a < 3; ++a) {
-      dims_[a] = std::max(1L, static_cast<long>(std::ceil(domain.extent(a) / cell_size_)));
-      total *= static_cast<double>(dims_[a]);
-    }
+    const double total = cells_along(0) * cells_along(1) * cells_along(2);
     if (total <= cap) break;
-    cell_size_ *= std::max(1.01, std::cbrt(total / cap));
+    cell_size_ *= std::max(1.01, std::cbrt(total / cap));  // an infinite total ends in one cell
   }
+  for (int a = 0; a < 3; ++a) dims_[a] = static_cast<long>(cells_along(a));
   for (int a = 0; a < 3; ++a) lo_[a] = domain.lo[a];
   const std::size_t ncells = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
 

@@ -1,0 +1,10 @@
+-- the .vtu frames of 8 particles fit in 8 KB, the .pvd collection of 200 frames does not
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.03, 0.03, 0.03}, hi = {0.05, 0.05, 0.05}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.fix("frames", "dump/vtk", {path = "out/f_*.vtu", every = 1, collection = "out/c.pvd"})
+pbf.run(200)

@@ -1,0 +1,7 @@
+-- unbounded recursion: Lua's stack overflow, refused
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+local function f(n) return 1 + f(n + 1) end
+f(1)

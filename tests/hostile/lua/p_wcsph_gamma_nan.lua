@@ -1,0 +1,12 @@
+-- fix/compute wcsph: gamma = 0/0: refused (the Tait exponent is >= 1; 1e300 overflows (rho/rho0)^gamma)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.0002)
+pbf.lattice{lo = {0, 0, 0}, hi = {0.04, 0.04, 0.04}, spacing = 0.01}
+pbf.fix("integrator", "leapfrog", {})
+pbf.fix("gravity", "gravity", {})
+pbf.fix("wcsph", "wcsph", {gamma = 0/0})
+pbf.fix("viscosity", "sph_viscosity", {})
+pbf.fix("walls", "box", {})
+pbf.fix("cfl", "cfl", {})
+pbf.run(2)

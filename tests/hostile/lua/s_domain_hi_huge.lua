@@ -1,0 +1,9 @@
+-- pbf.domain: {1e300, 1e300, 1e300}: refused (hi must exceed lo = 0; 1e300 m is an absurd domain for h = 0.02)
+pbf.domain{lo = {0, 0, 0}, hi = {1e300, 1e300, 1e300}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run(2)

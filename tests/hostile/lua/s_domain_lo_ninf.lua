@@ -1,0 +1,9 @@
+-- pbf.domain: {-1/0, -1/0, -1/0}: refused (lo = 0 or -1 is legal; 1e300 exceeds hi)
+pbf.domain{lo = {-1/0, -1/0, -1/0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run(2)

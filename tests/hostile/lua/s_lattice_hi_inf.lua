@@ -1,0 +1,9 @@
+-- pbf.lattice: {1/0, 1/0, 1/0}: refused (the region must lie inside the domain and above lo)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {1/0, 1/0, 1/0}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run(2)

@@ -1,0 +1,9 @@
+-- pbf.lattice: -1: refused (a sphere needs radius > 0; 1e300 keeps every site, legal)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01, center = {0.04, 0.04, 0.04}, radius = -1}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run(2)

@@ -1,0 +1,9 @@
+-- pbf.lattice: {1e300, 1e300, 1e300}: refused (0 and -1 m/s are legal; 1e300 m/s crosses the domain in one step)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01, velocity = {1e300, 1e300, 1e300}}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run(2)

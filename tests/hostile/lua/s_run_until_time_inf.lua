@@ -1,0 +1,9 @@
+-- pbf.run_until: 1/0: refused (a finite time; 0 and -1 are already reached (no step); 1e300 s needs more than 1e9 steps)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run_until(1/0)

@@ -1,0 +1,10 @@
+-- pbf.run(10000000) is not more than 1e7: no warning (the callback stops it)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.every("stop", 1, function(step) error("stopped at step " .. step) end)
+pbf.run(10000000)

@@ -1,0 +1,11 @@
+-- after t = 1 s, dt = 1e-17 s vanishes against the time (t + dt == t): refused
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(1)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run(1)
+pbf.timestep(1e-17)
+pbf.run(1)
