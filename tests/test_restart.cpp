@@ -160,9 +160,9 @@ TEST(Restart, DamagedFilesAreClearErrors) {
 }
 
 // A restart assembled part by part, with a correct header: each test damages one part
-// behind a valid checksum. Two particles, inside the domain, at rest.
+// behind a valid checksum. Two particles 0.17 m apart, inside the domain, at rest.
 struct RestartParts {
-  double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, h = 0.1, dt = 0.001, rho0 = 1000;
+  double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, h = 0.3, dt = 0.001, rho0 = 1000;  // h: 1.7 spacings
   std::int64_t step = 10, step_base = 0;
   double time_base = 0;
   std::vector<std::int64_t> ids{0, 1};

@@ -16,6 +16,7 @@
 #include "engine/core/error.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/sph/resolution.hpp"
 
 namespace pbf {
 
@@ -284,7 +285,17 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
     r.get_array(s.bytes, r.get<std::uint64_t>());
   }
   if (r.left() != 0) throw Error(fmt::format("{}: {} bytes of unexpected data at the end", what, r.left()));
+  // What a lattice or a particle file would have been refused for (a file made by hand).
+  try {
+    probe.check_scale();
+    check_kernel_radius(h, sampled_spacing(particles.x(), particles.y(), particles.z(), n), "the saved particles");
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", what, e.what()));
+  }
 
+  // The states first: a fix declared before the read that refuses its state (written by
+  // another version of its style) leaves the scene as it was.
+  sim.set_saved_states(std::move(states), path);
   sim.set_domain(domain);
   sim.set_kernel_radius(h);
   sim.set_timestep(dt);
@@ -292,7 +303,6 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   sim.set_clock(clock);
   sim.particles() = std::move(particles);
   sim.positions_changed();
-  sim.set_saved_states(std::move(states), path);
   sim.set_last_restart({path, clock.step});
   return {clock.step, sim.time(), sim.particles().size(), bytes.size(), omp_get_wtime() - start};
 }
