@@ -5,7 +5,7 @@
 #
 #   fuzz/run.sh [-t SECONDS] [-j JOBS] [-d DIR] [TARGET...]
 #
-# TARGET: scene_file restart vtu csv (default: all), JOBS of them at a time (default 1).
+# TARGET: scene_file restart vtu csv mesh (default: all), JOBS of them at a time (default 1).
 #
 # Everything is written under DIR (default: a new temporary directory): DIR/build, and for
 # each target DIR/TARGET/corpus (the seeds, then what the fuzzer adds), DIR/TARGET/log, and
@@ -27,7 +27,7 @@ while getopts "t:j:d:" opt; do
 done
 shift $((OPTIND - 1))
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(scene_file restart vtu csv)
+[ ${#targets[@]} -gt 0 ] || targets=(scene_file restart vtu csv mesh)
 if ! command -v clang++ > /dev/null; then
   echo "fuzz/run.sh: clang++ not found (apt-get install clang libclang-rt-14-dev libomp-14-dev)" >&2
   exit 2

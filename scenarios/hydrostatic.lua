@@ -10,7 +10,9 @@
 -- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
 -- csv (thermo CSV file, default none), out (frame directory, default none), solver ("pbf",
 -- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha).
-package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
+local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
+package.path = here .. "../share/lua/?.lua;" .. package.path
+local geometry = here .. "geometry/"
 local function flag(value, default)
   if value == nil then return default end
   return not (value == false or value == 0 or value == "false")
@@ -36,7 +38,18 @@ else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 end
-pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
+if (var.walls or "box") == "box" then
+  pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
+else  -- the same box as a solid container: a primitive, or a mesh file read with Assimp
+  local tank = {fluid = "inside", wall_density = flag(var.wall_density, true)}
+  if var.walls == "mesh" then
+    tank.file = geometry .. "unit_box.obj"
+    tank.scale = {W, W, 1.5 * H}
+  else
+    tank.shape, tank.lo, tank.hi = "box", {0, 0, 0}, {W, W, 1.5 * H}
+  end
+  pbf.fix("walls", "solid", tank)
+end
 if var.out then pbf.fix("frames", "dump/text", {path = var.out .. "/frame_*.txt", interval = 0.05}) end
 
 pbf.compute("err", "density_error")

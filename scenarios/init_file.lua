@@ -6,11 +6,14 @@
 --   pbfengine run scenarios/init_file.lua -v init=PATH [-v out=DIR] [-v iterations=N]
 --
 -- Variables: init (the scene file, required), out (frame directory, default "out"),
+-- walls ("box", the default: the analytic box fix; "mesh": the same box as a container read
+-- from scenarios/geometry/unit_box.obj; "solid": the same as a box primitive),
 -- iterations (constraint iterations per step, default 4), solver ("pbf", the default, or
 -- "wcsph": weakly compressible SPH, share/lua/solvers.lua; the file's time step is then an
 -- upper bound, the CFL control takes smaller steps as needed, and ends steps on the output
 -- interval so that frames stay on it).
-package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
+local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
+package.path = here .. "../share/lua/?.lua;" .. package.path
 local init = var.init or error("missing variable 'init': give the scene file with -v init=PATH")
 local out = var.out or "out"
 local iterations = var.iterations or 4
@@ -25,7 +28,17 @@ else
   pbf.fix("vorticity", "vorticity", {})
   pbf.fix("xsph", "xsph", {})
 end
-pbf.fix("walls", "box", {})
+if (var.walls or "box") == "box" then
+  pbf.fix("walls", "box", {})
+else  -- the same walls as a container read from a mesh file ("mesh") or a primitive ("solid")
+  local tank = {fluid = "inside"}
+  if var.walls == "mesh" then
+    tank.file, tank.scale = here .. "geometry/unit_box.obj", scene.L
+  else
+    tank.shape, tank.lo, tank.hi = "box", {0, 0, 0}, {scene.L, scene.L, scene.L}
+  end
+  pbf.fix("walls", "solid", tank)
+end
 pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = scene.interval})
 
 pbf.compute("err", "density_error")

@@ -7,6 +7,9 @@
 #include "engine/io/restart.hpp"
 #include "engine/io/scene_file.hpp"
 #include "engine/sph/lattice.hpp"
+#include "engine/geometry/mesh_file.hpp"
+#include "engine/geometry/mesh_sdf.hpp"
+#include "engine/geometry/shape.hpp"
 #include "engine/core/simulation.hpp"
 #include "scripting/script_state.hpp"
 
@@ -61,19 +64,59 @@ int l_lattice(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.lattice");
   const Params p = table_arg(L, 1, "pbf.lattice",
-                             {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
-                              {"hi", ParamType::Vector3, std::nullopt, "m", ""},
+                             {{"lo", ParamType::Vector3, std::nullopt, "m", "", true},
+                              {"hi", ParamType::Vector3, std::nullopt, "m", "", true},
                               {"spacing", ParamType::Real, std::nullopt, "m", ""},
                               {"velocity", ParamType::Vector3, Vec3{0, 0, 0}, "m/s", ""},
                               {"center", ParamType::Vector3, std::nullopt, "m", "", true},
-                              {"radius", ParamType::Real, 0.0, "m", ""}});
-  const Vec3 lo = p.vec3("lo"), hi = p.vec3("hi"), v = p.vec3("velocity");
+                              {"radius", ParamType::Real, 0.0, "m", ""},
+                              {"mesh", ParamType::String, std::nullopt, "", "", true},
+                              ParamSpec{"scale", ParamType::Vector3, Vec3{1, 1, 1}, "", ""}.or_one_number(),
+                              {"rotate", ParamType::Vector3, Vec3{0, 0, 0}, "deg", ""},
+                              {"translate", ParamType::Vector3, Vec3{0, 0, 0}, "m", ""}});
+  const Vec3 v = p.vec3("velocity");
   const double radius = p.real("radius");
   if (radius < 0 || (radius > 0) != p.has("center"))
     throw Error("pbf.lattice: a sphere needs both 'center' and a positive 'radius'");
-  const Vec3 center = p.has("center") ? p.vec3("center") : Vec3{0, 0, 0};
+  if (radius > 0 && p.has("mesh")) throw Error("pbf.lattice: give a sphere or a mesh, not both");
+  // The region: lo and hi, or the mesh's bounds (within the domain) where they are left out.
+  std::unique_ptr<Shape> shape;
+  Vec3 lo{}, hi{};
+  if (p.has("mesh")) {
+    const std::string& file = p.string("mesh");
+    const double spacing = p.real("spacing");
+    if (!(spacing > 0)) throw Error(fmt::format("pbf.lattice: spacing must be positive, got {}", spacing));
+    for (double factor : p.vec3("scale"))
+      if (!(factor > 0 && factor <= 1e6)) throw Error(fmt::format("pbf.lattice: 'scale' must be in (0, 1e6], got {}", factor));
+    TriangleMesh mesh = read_mesh_file(file);
+    check_closed(mesh, fmt::format("pbf.lattice: mesh file '{}'", file));
+    orient_outward(mesh);
+    Placement placement;
+    placement.scale = p.vec3("scale");
+    for (int a = 0; a < 3; ++a) {
+      placement.rotate_deg[a] = p.vec3("rotate")[a];
+      placement.translate[a] = p.vec3("translate")[a];
+    }
+    place(mesh, placement);
+    const auto bounds_of_mesh = bounds(mesh);
+    const Domain& domain = S.sim.domain();
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max(bounds_of_mesh[0][a], domain.lo[a]);
+      hi[a] = std::min(bounds_of_mesh[1][a], domain.hi[a]);
+      if (!(hi[a] > lo[a]) && !(p.has("lo") && p.has("hi")))
+        throw Error(fmt::format("pbf.lattice: mesh file '{}' lies outside the domain: it spans [{:.6g}, {:.6g}] along "
+                                "{}, the domain [{:.6g}, {:.6g}]",
+                                file, bounds_of_mesh[0][a], bounds_of_mesh[1][a], "xyz"[a], domain.lo[a], domain.hi[a]));
+    }
+    shape = mesh_shape(mesh, spacing / 2, 2 * spacing);
+  } else if (radius > 0) {
+    shape = sphere_shape({p.vec3("center")[0], p.vec3("center")[1], p.vec3("center")[2]}, radius, Placement{});
+  }
+  if (p.has("lo")) lo = p.vec3("lo");
+  if (p.has("hi")) hi = p.vec3("hi");
+  if (!shape && !(p.has("lo") && p.has("hi"))) throw Error("pbf.lattice: give 'lo' and 'hi' (or a 'mesh' to fill)");
   lua_pushinteger(L, static_cast<lua_Integer>(
-                         add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data(), center.data(), radius)));
+                         add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data(), shape.get())));
   return 1;
 }
 

@@ -4,7 +4,7 @@ with the standard library and numpy, as render_frames.py does.
 
     import vtu
     points, arrays = vtu.read_vtu("out/frame_00003.vtu")  # (N, 3); {name: (N,) or (N, k)}
-    for time, path in vtu.read_pvd("out/frames.pvd"):      # files made absolute
+    for time, path in vtu.read_pvd("out/frames.pvd"):      # particle frames, made absolute
         ...
 
 Reads appended (raw or base64), inline base64 ("binary") and ascii arrays, UInt32 or
@@ -128,8 +128,10 @@ def read_vtu(path):
     return pts, arrays
 
 
-def read_pvd(path):
-    """[(time, absolute path)] of a .pvd collection, in file order."""
+def read_pvd(path, part=0):
+    """[(time, absolute path)] of one part of a .pvd collection, in file order: by default
+    part 0, the particle frames (dump/vtk lists the solids' .vtp surfaces as parts 1, 2, ...;
+    a DataSet without a part is part 0). part=None: every DataSet."""
     try:
         root = ET.parse(path).getroot()
     except (OSError, ET.ParseError) as e:
@@ -139,7 +141,8 @@ def read_pvd(path):
     base = os.path.dirname(os.path.abspath(path))
     try:
         return [(float(d.get("timestep", "nan")), os.path.join(base, d.get("file")))
-                for d in root.find("Collection").findall("DataSet")]
+                for d in root.find("Collection").findall("DataSet")
+                if part is None or int(d.get("part", "0")) == part]
     except (TypeError, ValueError) as e:
         raise VtuError(f"{path}: a DataSet without a valid timestep or file ({e})")
 

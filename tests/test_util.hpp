@@ -10,6 +10,9 @@
 #include <vector>
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
+#include "engine/core/error.hpp"
 #include "engine/core/real.hpp"
 
 namespace pbf::test {
@@ -111,4 +114,27 @@ namespace pbf::test {
 // Relative tolerance for results that would be exact but for rounding: a few hundred
 // roundings of the particle data's type.
 inline constexpr double kRounding = sizeof(pbf::real) == 4 ? 1e-4 : 1e-9;
+// The message of the pbf::Error that f() throws, or "" if it throws none. Any other
+// exception fails the test (a std::bad_alloc would mean an unchecked size).
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not a pbf::Error: " << e.what();
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace pbf::test
+
+// `call` throws a pbf::Error whose message names `name` (a file, a parameter) and says `words`.
+#define EXPECT_ERROR_NAMING(call, name, words)                                           \
+  do {                                                                                   \
+    const std::string e_ = pbf::test::error_of([&] { call; });                           \
+    EXPECT_NE(e_.find(std::string(name)), std::string::npos) << "message: " << e_;       \
+    EXPECT_NE(e_.find(words), std::string::npos) << "message: " << e_;                   \
+  } while (0)

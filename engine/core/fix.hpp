@@ -12,6 +12,7 @@ namespace pbf {
 
 class Simulation;
 class DensityBoundary;
+class SolidBody;
 class ByteWriter;
 class ByteReader;
 
@@ -52,7 +53,12 @@ class Fix {
   virtual const char* exclusive_job() const { return nullptr; }
   // Walls that add to the density the solver sees (nullptr: none).
   virtual DensityBoundary* density_boundary() { return nullptr; }
+  // A solid the outputs draw (nullptr: none).
+  virtual const SolidBody* solid_body() const { return nullptr; }
 
+  // Start of every run, before any fix's init(): a fix may change the scene here (a solid
+  // leaves out the fluid created inside it), so every init() sees the particles of the run.
+  virtual void prepare_scene(Simulation&) {}
   // Start of every run: declare fields (Particles::declare; a field no fix declares in this
   // round is freed), precompute constants, write initial output.
   virtual void init(Simulation&) {}

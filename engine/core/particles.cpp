@@ -24,6 +24,30 @@ void Particles::add(const real position[3], const real velocity[3], real mass) {
   ids_.push_back(static_cast<std::int64_t>(ids_.size()));
 }
 
+std::size_t Particles::remove(const std::vector<char>& drop) {
+  const std::size_t n = size();
+  std::vector<std::uint32_t> kept;
+  kept.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!drop[i]) kept.push_back(static_cast<std::uint32_t>(i));
+  if (kept.size() == n) return 0;
+  for (Field& field : fields_)
+    for (auto& component : field.data) {
+      if (component.empty()) continue;  // a freed field
+      for (std::size_t k = 0; k < kept.size(); ++k) component[k] = component[kept[k]];
+      component.resize(kept.size());
+    }
+  // New ids: the rank of each remaining particle's old id.
+  std::vector<std::int64_t> old_ids(kept.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) old_ids[k] = ids_[kept[k]];
+  std::vector<std::uint32_t> by_id(kept.size());
+  for (std::size_t k = 0; k < by_id.size(); ++k) by_id[k] = static_cast<std::uint32_t>(k);
+  std::sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return old_ids[a] < old_ids[b]; });
+  ids_.assign(kept.size(), 0);
+  for (std::size_t rank = 0; rank < by_id.size(); ++rank) ids_[by_id[rank]] = static_cast<std::int64_t>(rank);
+  return n - kept.size();
+}
+
 void Particles::fill(Field& field) const {
   field.data.assign(static_cast<std::size_t>(field.spec.components), std::vector<real>(size(), real(0)));
 }

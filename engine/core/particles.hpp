@@ -83,6 +83,11 @@ class Particles {
   // the fields). The ids must be a permutation of 0..n-1.
   void reset(std::vector<std::int64_t> ids);
 
+  // Removes the particles whose `drop` entry is non-zero, keeping the others' order; ids
+  // are renumbered 0..n-1 in their old order (the input order of those that remain).
+  // Returns how many were removed.
+  std::size_t remove(const std::vector<char>& drop);
+
   // Reorders every field: particle i of the result is particle order[i] of before.
   void permute(const std::vector<std::uint32_t>& order);
   // index_of_id()[k]: the current index of the particle with id k.

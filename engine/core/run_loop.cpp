@@ -70,6 +70,8 @@ void RunLoop::prepare() {
   sim_.check_inside_domain();
   sim_.collect_boundaries();
   sim_.warn_unmatched_states();
+  for (const auto& f : sim_.fixes_) f->prepare_scene(sim_);
+  if (P.size() == 0) throw Error("run: no particle is left: every one was created inside a solid");
 
   check_pipeline();
   // Every fix declares the fields it uses; the outputs start last, after the fields no fix

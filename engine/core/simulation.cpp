@@ -147,8 +147,11 @@ void Simulation::warn_unmatched_states() {
 
 void Simulation::collect_boundaries() {
   boundaries_.clear();
-  for (const auto& f : fixes_)
+  solids_.clear();
+  for (const auto& f : fixes_) {
     if (DensityBoundary* b = f->density_boundary()) boundaries_.push_back(b);
+    if (const SolidBody* s = f->solid_body()) solids_.push_back(s);
+  }
   positions_changed();  // the density the cache holds may have changed
 }
 

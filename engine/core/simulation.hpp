@@ -10,6 +10,7 @@
 #include "engine/sph/density_boundary.hpp"
 #include "engine/core/domain.hpp"
 #include "engine/core/fix.hpp"
+#include "engine/geometry/solid_body.hpp"
 #include "engine/sph/kernels.hpp"
 #include "engine/sph/neighbor_grid.hpp"
 #include "engine/core/particles.hpp"
@@ -117,6 +118,8 @@ class Simulation {
   // Fixes that move particles outside the run loop's knowledge call this.
   void positions_changed() { ++positions_version_; }
   const std::vector<DensityBoundary*>& density_boundaries() const { return boundaries_; }
+  // The solids of the pipeline, in script order (for outputs that draw them).
+  const std::vector<const SolidBody*>& solid_bodies() const { return solids_; }
 
  private:
   friend class RunLoop;
@@ -149,6 +152,7 @@ class Simulation {
   std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0;
   std::vector<real> density_;
   std::vector<DensityBoundary*> boundaries_;
+  std::vector<const SolidBody*> solids_;
 };
 
 }  // namespace pbf

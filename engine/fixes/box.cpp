@@ -4,23 +4,19 @@
 // rate per second, exp(-rate dt) per step, so the friction a sliding front feels does not
 // depend on the time step.
 //
-// With wall_density on, each wall counts as fluid at rest density filling the half-space
-// behind it. For a particle at distance d < h from a face that fluid's share of the kernel is
-//   f(d) = integral over {z > d + delta} of W_poly6 dV = pi c / 4 (F(h) - F(d + delta)),
-//   F(z) = integral (h^2 - z^2)^4 dz,
-// with delta (a small fraction of the spacing) chosen so that a particle of the initial
-// lattice's first layer sees exactly the lattice sites it misses. Faces combine as
-// 1 - prod_k (1 - f_k): exact for one wall and close at edges and corners, where a plain sum
-// would count the regions behind two walls twice. The solver adds rho0 times that and its
-// gradient. Without it, particles near a wall miss part of their neighbourhood: the solver
-// then packs them tighter, and the fluid sinks and sticks at the walls.
+// With wall_density on, each face adds the density of the fluid-filled half-space behind it
+// (engine/sph/wall_density.hpp). Faces combine as 1 - prod_k (1 - f_k): exact for one wall
+// and close at edges and corners, where a plain sum would count the regions behind two walls
+// twice. The solver adds rho0 times that and its gradient. Without it, particles near a wall
+// miss part of their neighbourhood: the solver then packs them tighter, and the fluid sinks
+// and sticks at the walls.
 #include <cmath>
 #include <vector>
 
 #include "engine/sph/density_boundary.hpp"
 #include "engine/core/error.hpp"
 #include "engine/registry/builtin_styles.hpp"
-#include "engine/sph/mass.hpp"
+#include "engine/sph/wall_density.hpp"
 #include "engine/core/simulation.hpp"
 
 namespace pbf {
@@ -90,25 +86,7 @@ class Box : public Fix, public DensityBoundary {
     if (wall_density_) prepare(sim);
   }
 
-  void prepare(const Simulation& sim) override {
-    const auto& P = sim.particles();
-    if (P.size() == 0) return;
-    const double mass = P.mean_mass();
-    if (mass == prepared_[0] && sim.kernel_radius() == prepared_[1] && sim.rest_density() == prepared_[2]) return;
-    prepared_[0] = mass;
-    prepared_[1] = sim.kernel_radius();
-    prepared_[2] = sim.rest_density();
-    const double spacing = lattice_spacing(mass, sim.kernels(), sim.rest_density());
-    const double missing = lattice_wall_density(mass, sim.kernels(), sim.rest_density()) / sim.rest_density();
-    const double h = sim.kernel_radius();
-    double lo = -0.5 * spacing, hi = h;  // f falls with the distance
-    for (int it = 0; it < 100; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      real slope;
-      (share(sim, real(0.5 * spacing + mid), slope) > missing ? lo : hi) = mid;
-    }
-    delta_ = real(0.5 * (lo + hi));
-  }
+  void prepare(const Simulation& sim) override { wall_.prepare(sim); }
 
   void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const override {
     const Domain& d = sim.domain();
@@ -118,9 +96,9 @@ class Box : public Fix, public DensityBoundary {
     real outside = 1;  // prod_k (1 - f_k)
     bool near = false;
     for (int a = 0; a < 3; ++a) {
-      const real to_lo = p[a] - real(d.lo[a]) + delta_, to_hi = real(d.hi[a]) - p[a] + delta_;
-      f[2 * a] = to_lo < h ? share(sim, to_lo, df[2 * a]) : (df[2 * a] = 0, real(0));
-      f[2 * a + 1] = to_hi < h ? share(sim, to_hi, df[2 * a + 1]) : (df[2 * a + 1] = 0, real(0));
+      const real to_lo = p[a] - real(d.lo[a]), to_hi = real(d.hi[a]) - p[a];
+      f[2 * a] = to_lo + wall_.delta() < h ? wall_.fraction(to_lo, df[2 * a]) : (df[2 * a] = 0, real(0));
+      f[2 * a + 1] = to_hi + wall_.delta() < h ? wall_.fraction(to_hi, df[2 * a + 1]) : (df[2 * a + 1] = 0, real(0));
       df[2 * a + 1] = -df[2 * a + 1];  // the distance to the upper face falls as x_a grows
       near = near || f[2 * a] > 0 || f[2 * a + 1] > 0;
       outside *= (1 - f[2 * a]) * (1 - f[2 * a + 1]);
@@ -133,23 +111,7 @@ class Box : public Fix, public DensityBoundary {
   }
 
  private:
-  // f(dist), the kernel's share behind a face, and its derivative (negative).
-  static real share(const Simulation& sim, real dist, real& slope) {
-    const real h = sim.kernels().h, h2 = h * h;
-    const real zd = dist > 0 ? (dist < h ? dist : h) : 0;
-    const real scale = real(M_PI) * sim.kernels().poly6_coef / 4;
-    auto F = [&](real z) {
-      const real z2 = z * z;
-      return z * (h2 * h2 * h2 * h2 - z2 * (h2 * h2 * h2 * real(4.0 / 3) - z2 * (h2 * h2 * real(6.0 / 5) -
-                                                                                 z2 * (h2 * real(4.0 / 7) - z2 / 9))));
-    };
-    const real q = h2 - zd * zd;
-    slope = dist > 0 && dist < h ? -scale * q * q * q * q : 0;
-    return scale * (F(h) - F(zd));
-  }
-
-  real delta_ = 0;
-  double prepared_[3] = {0, 0, 0};  // mass, h, rho0 that delta_ was computed for
+  HalfSpaceWall wall_;
   double restitution_, friction_;
   bool wall_density_;
   std::vector<real> incoming_[3];

@@ -2,6 +2,15 @@
 // ParaView collection (.pvd) listing every frame with its simulated time, so ParaView opens
 // the whole run as an animation on the right time axis. Positions are the points; the
 // chosen fields are point data, in id order.
+//
+// Solids go beside the frames as surfaces (.vtp), each written only when it has moved: out/
+// frame_*.vtu gives out/frame_solid_NAME.vtp for a surface that never moved (version 0) and
+// out/frame_solid_NAME_NNNNN.vtp (the frame number) for each new position of a moving one
+// (and for a solid replaced by another of the same name between runs).
+// The collection lists, at every frame's time, the particles as part 0 and each solid's
+// current surface as parts 1, 2, ..., so ParaView shows fluid and solids together.
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fmt/format.h>
 
@@ -9,6 +18,7 @@
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/output/dump.hpp"
+#include "engine/io/vtp.hpp"
 #include "engine/io/vtu.hpp"
 #include "engine/core/simulation.hpp"
 
@@ -18,23 +28,64 @@ namespace {
 
 constexpr VtuType kRealType = sizeof(real) == 4 ? VtuType::Float32 : VtuType::Float64;
 
+// FNV-1a of a surface's bytes: tells, at the start of a run, whether a solid of the same name
+// and version is the surface already on disk (a solid replaced between runs keeps its name).
+std::uint64_t fingerprint(const TriangleMesh& mesh) {
+  std::uint64_t h = 14695981039346656037ull;
+  auto mix = [&](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < bytes; ++k) h = (h ^ p[k]) * 1099511628211ull;
+  };
+  mix(mesh.vertices.data(), mesh.vertices.size() * sizeof(mesh.vertices[0]));
+  mix(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+  return h;
+}
+
+// A solid's name as part of a file name (fix ids are letters, digits, '_' and '-' already).
+std::string file_name_part(const std::string& name) {
+  std::string s = name.empty() ? "solid" : name;
+  for (char& c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) c = '_';
+  return s;
+}
+
 class DumpVtk : public Dump {
  public:
   DumpVtk(const std::string& id, const Params& p) : Dump(id, "dump/vtk", p), collection_(p.string("collection")) {
-    if (collection_.empty()) {  // out/frame_*.vtu -> out/frame.pvd
-      std::string stem = std::filesystem::path(pattern()).filename().string();
-      stem = stem.substr(0, stem.find('*'));
-      while (!stem.empty() && (stem.back() == '_' || stem.back() == '-' || stem.back() == '.')) stem.pop_back();
-      collection_ = (std::filesystem::path(pattern()).parent_path() / ((stem.empty() ? "frames" : stem) + ".pvd")).string();
-    }
+    // out/frame_*.vtu -> "frame": names the collection (out/frame.pvd) and the solids' files.
+    stem_ = std::filesystem::path(pattern()).filename().string();
+    stem_ = stem_.substr(0, stem_.find('*'));
+    while (!stem_.empty() && (stem_.back() == '_' || stem_.back() == '-' || stem_.back() == '.')) stem_.pop_back();
+    if (stem_.empty()) stem_ = "frames";
+    if (collection_.empty()) collection_ = (std::filesystem::path(pattern()).parent_path() / (stem_ + ".pvd")).string();
   }
 
+  void init(Simulation& sim) override {
+    check_surfaces_ = true;  // the pipeline may have changed since the last run
+    Dump::init(sim);
+  }
+
+  // The frames (time and particle file) as before solids existed, then the solids' part:
+  // their files per frame and what was last written of each. A restart of a version without
+  // solids ends after the frames, and continues with none written.
   void save_state(ByteWriter& w) const override {
     Dump::save_state(w);
     w.put<std::uint64_t>(frames_.size());
-    for (const auto& [time, file] : frames_) {
-      w.put(time);
-      w.put_string(file);
+    for (const auto& frame : frames_) {
+      w.put(frame.time);
+      w.put_string(frame.files[0]);
+    }
+    w.put<std::uint64_t>(frames_.size());
+    for (const auto& frame : frames_) {
+      w.put<std::uint64_t>(frame.files.size() - 1);
+      for (std::size_t k = 1; k < frame.files.size(); ++k) w.put_string(frame.files[k]);
+    }
+    w.put<std::uint64_t>(surfaces_.size());
+    for (const auto& s : surfaces_) {
+      w.put_string(s.name);
+      w.put(s.version);
+      w.put(s.fingerprint);
+      w.put_string(s.file);
     }
   }
 
@@ -42,15 +93,33 @@ class DumpVtk : public Dump {
     Dump::restore_state(r);
     const auto count = r.get<std::uint64_t>();
     r.require(count, 2 * sizeof(std::uint64_t));
-    frames_.resize(count);
-    for (auto& [time, file] : frames_) {
-      time = r.get<double>();
-      file = r.get_string();
+    frames_.assign(count, {});
+    for (auto& frame : frames_) {
+      frame.time = r.get<double>();
+      frame.files = {r.get_string()};
+    }
+    surfaces_.clear();
+    if (r.left() == 0) return;
+    if (r.get<std::uint64_t>() != count)
+      throw Error(fmt::format("{}: the solids' files do not match the frames", r.what()));
+    for (auto& frame : frames_) {
+      const auto parts = r.get<std::uint64_t>();
+      r.require(parts, sizeof(std::uint64_t));
+      for (std::uint64_t k = 0; k < parts; ++k) frame.files.push_back(r.get_string());
+    }
+    const auto surfaces = r.get<std::uint64_t>();
+    r.require(surfaces, 4 * sizeof(std::uint64_t));
+    surfaces_.resize(surfaces);
+    for (auto& s : surfaces_) {
+      s.name = r.get_string();
+      s.version = r.get<std::uint64_t>();
+      s.fingerprint = r.get<std::uint64_t>();
+      s.file = r.get_string();
     }
   }
 
  private:
-  void write_frame(Simulation& sim, const std::string& path, std::int64_t) override {
+  void write_frame(Simulation& sim, const std::string& path, std::int64_t frame) override {
     const std::size_t n = sim.particles().size();
     values_.resize(fields().size());
     std::vector<VtuArray> arrays;
@@ -68,14 +137,57 @@ class DumpVtk : public Dump {
     position.gather(sim, 0, points_);
     write_vtu(path, n, {"Points", 3, kRealType, points_.data()}, arrays);
 
-    // The collection names frames relative to its own directory, as ParaView expects.
+    // The collection names files relative to its own directory, as ParaView expects.
     const auto base = std::filesystem::path(collection_).parent_path();
-    frames_.emplace_back(sim.time(), std::filesystem::path(path).lexically_relative(base.empty() ? "." : base).string());
-    write_pvd(collection_, frames_);
+    auto relative = [&](const std::string& file) {
+      return std::filesystem::path(file).lexically_relative(base.empty() ? "." : base).string();
+    };
+    Frame& f = frames_.emplace_back(Frame{sim.time(), {relative(path)}});
+    for (const SolidBody* solid : sim.solid_bodies())
+      f.files.push_back(relative(surface_file(*solid, std::filesystem::path(path).parent_path(), frame)));
+    check_surfaces_ = false;
+
+    std::vector<PvdDataSet> datasets;
+    for (const auto& fr : frames_)
+      for (std::size_t k = 0; k < fr.files.size(); ++k) datasets.push_back({fr.time, static_cast<int>(k), fr.files[k]});
+    write_pvd(collection_, datasets);
   }
 
-  std::string collection_;
-  std::vector<std::pair<double, std::string>> frames_;  // (time, file) of every frame so far
+  // The file that holds the solid's surface now: the one last written, unless the surface
+  // has moved since (a new version; at the start of a run, also other bytes under the same
+  // name and version), in which case it is written now.
+  std::string surface_file(const SolidBody& solid, const std::filesystem::path& dir, std::int64_t frame) {
+    const std::string name = file_name_part(solid.name());
+    const std::uint64_t version = solid.surface_version();
+    auto it = std::find_if(surfaces_.begin(), surfaces_.end(), [&](const Surface& s) { return s.name == name; });
+    if (it != surfaces_.end() && it->version == version &&
+        !(check_surfaces_ && it->fingerprint != fingerprint(solid.surface())))
+      return it->file;
+    // A surface replaced under the same name gets a numbered file too: earlier frames keep theirs.
+    const bool first = it == surfaces_.end();
+    const std::string file = (dir / (version == 0 && first ? fmt::format("{}_solid_{}.vtp", stem_, name)
+                                                           : fmt::format("{}_solid_{}_{:05d}.vtp", stem_, name, frame)))
+                                 .string();
+    write_vtp(file, solid.surface());
+    if (first) it = surfaces_.insert(surfaces_.end(), Surface{});
+    *it = Surface{name, version, fingerprint(solid.surface()), file};
+    return file;
+  }
+
+  struct Frame {
+    double time;
+    std::vector<std::string> files;  // the particles, then each solid's surface (parts 0, 1, ...)
+  };
+  struct Surface {  // the surface file last written of a solid
+    std::string name;
+    std::uint64_t version, fingerprint;
+    std::string file;
+  };
+
+  std::string collection_, stem_;
+  std::vector<Frame> frames_;      // every frame so far
+  std::vector<Surface> surfaces_;  // by solid name, in the order first written
+  bool check_surfaces_ = true;
   std::vector<std::vector<real>> values_;
   std::vector<real> points_;
   std::vector<std::int64_t> ids_;
@@ -87,7 +199,8 @@ void register_dump_vtk(StyleRegistry& r) {
   auto params = Dump::params("out/frame_*.vtu", {"id", "velocity", "speed", "density"});
   params.push_back({"collection", ParamType::String, std::string(""), "",
                     "the .pvd collection file (default: beside the frames, named after the pattern)"});
-  r.add({"dump/vtk", StyleKind::fix, "VTK XML frames (.vtu, binary) and a .pvd collection with their times, for ParaView",
+  r.add({"dump/vtk", StyleKind::fix,
+         "VTK XML frames (.vtu, binary), solids' surfaces (.vtp) and a .pvd collection with their times, for ParaView",
          std::move(params), [](const std::string& id, const Params& p) { return std::make_unique<DumpVtk>(id, p); },
          nullptr});
 }

@@ -82,6 +82,8 @@ class PositionBasedFluid : public Fix {
     real* lambda = P.data(lambda_);
     const auto& walls = sim.density_boundaries();
     for (auto& c : dp_) c.resize(n);
+    if (!walls.empty())
+      for (auto& c : wall_grad_) c.resize(n);
 
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -96,9 +98,14 @@ class PositionBasedFluid : public Fix {
         gi[2] += g * dz;
         sum_sq += g * g * r2;
       });
-      real wall_grad[3] = {0, 0, 0};
-      for (const DensityBoundary* b : walls) b->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
-      for (int c = 0; c < 3; ++c) gi[c] += wall_grad[c] * inv_rho0;
+      if (!walls.empty()) {  // kept for the correction pass: the positions do not change in between
+        real wall_grad[3] = {0, 0, 0};
+        for (const DensityBoundary* b : walls) b->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
+        for (int c = 0; c < 3; ++c) {
+          gi[c] += wall_grad[c] * inv_rho0;
+          wall_grad_[c][i] = wall_grad[c];
+        }
+      }
       real C = rho * inv_rho0 - 1;
       if (one_sided_ && C < 0) C = 0;
       lambda[i] = -C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
@@ -121,12 +128,8 @@ class PositionBasedFluid : public Fix {
         d[1] += g * dy;
         d[2] += g * dz;
       });
-      if (!walls.empty()) {
-        // A wall's gradient moves only particle i (the wall has no lambda of its own).
-        real rho = 0, wall_grad[3] = {0, 0, 0};
-        for (const DensityBoundary* b : walls) b->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
-        for (int c = 0; c < 3; ++c) d[c] += lambda[i] * inv_rho0 * wall_grad[c];
-      }
+      if (!walls.empty())  // a wall's gradient moves only particle i (the wall has no lambda of its own)
+        for (int c = 0; c < 3; ++c) d[c] += lambda[i] * inv_rho0 * wall_grad_[c][i];
       dpx[i] = d[0];
       dpy[i] = d[1];
       dpz[i] = d[2];
@@ -165,6 +168,7 @@ class PositionBasedFluid : public Fix {
   FieldId lambda_ = 0;
   std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
   std::vector<real> dp_[3];    // corrections of one iteration
+  std::vector<real> wall_grad_[3];  // the walls' density gradient at each particle, within an iteration
 };
 
 }  // namespace

@@ -1,41 +1,18 @@
 #include "engine/io/vtu.hpp"
 
 #include <algorithm>
-#include <bit>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
-#include <iterator>
-#include <string_view>
 
 #include "engine/core/error.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/vtk_appended.hpp"
 
 namespace pbf {
 
-// Both directions copy array bytes as they are and call them LittleEndian.
-static_assert(std::endian::native == std::endian::little, "vtu.cpp assumes a little-endian machine");
-
 namespace {
-
-// ---------------------------------------------------------------- writing
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '&') out += "&amp;";
-    else if (c == '<') out += "&lt;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 const char* type_name(VtuType t) {
   return t == VtuType::Float32 ? "Float32" : t == VtuType::Float64 ? "Float64" : "Int64";
@@ -58,77 +35,61 @@ void write_vtu(const std::string& path, std::size_t n, const VtuArray& points,
     throw Error(fmt::format("{}: points must be 3-component Float32 or Float64", path));
   for (const auto& a : point_data) check_array(path, a, n);
 
-  // The head lists every array with its offset into the appended block; the blocks follow
-  // in the same order, each a UInt64 byte count and the bytes.
-  std::uint64_t offset = 0;
-  std::string head = fmt::format(
-      "<?xml version=\"1.0\"?>\n"
-      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-      "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-      n, n);
-  auto entry = [&](const char* type, const std::string& name, int components, std::size_t bytes) {
-    head += fmt::format(
-        "        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>\n",
-        type, xml_escape(name), components, offset);
-    offset += sizeof(std::uint64_t) + bytes;
-  };
-  head += "      <PointData>\n";
-  for (const auto& a : point_data) entry(type_name(a.type), a.name, a.components, n * a.components * type_size(a.type));
-  head += "      </PointData>\n      <Points>\n";
-  entry(type_name(points.type), "Points", 3, n * 3 * type_size(points.type));
-  head += "      </Points>\n      <Cells>\n";
-  entry("Int64", "connectivity", 1, n * 8);
-  entry("Int64", "offsets", 1, n * 8);
-  entry("UInt8", "types", 1, n);
-  head += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
+  VtkAppendedFile out(path, "UnstructuredGrid");
+  out.head(fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <PointData>\n", n, n));
+  for (const auto& a : point_data)
+    out.declare(type_name(a.type), a.name, a.components, n * a.components * type_size(a.type));
+  out.head("      </PointData>\n      <Points>\n");
+  out.declare(type_name(points.type), "Points", 3, n * 3 * type_size(points.type));
+  out.head("      </Points>\n      <Cells>\n");
+  out.declare("Int64", "connectivity", 1, n * 8);
+  out.declare("Int64", "offsets", 1, n * 8);
+  out.declare("UInt8", "types", 1, n);
+  out.head("      </Cells>\n    </Piece>\n");
 
-  AtomicFile out(path);
-  out.write(head);
-  auto block = [&](const void* data, std::uint64_t bytes) {
-    out.write(&bytes, sizeof bytes);
-    out.write(data, bytes);
-  };
-  for (const auto& a : point_data) block(a.data, n * a.components * type_size(a.type));
-  block(points.data, n * 3 * type_size(points.type));
-
+  for (const auto& a : point_data) out.block(a.data, n * a.components * type_size(a.type));
+  out.block(points.data, n * 3 * type_size(points.type));
   // One VTK_VERTEX (type 1) per particle: connectivity i, offsets i+1. Written in chunks
   // rather than materialised, so a frame costs no memory beyond the particle arrays.
   constexpr std::size_t kChunk = 4096;
   std::int64_t ints[kChunk];
   for (int pass = 0; pass < 2; ++pass) {
-    const std::uint64_t bytes = n * 8;
-    out.write(&bytes, sizeof bytes);
+    out.begin_block(n * 8);
     for (std::size_t i = 0; i < n; i += kChunk) {
       const std::size_t m = std::min(kChunk, n - i);
       for (std::size_t k = 0; k < m; ++k) ints[k] = static_cast<std::int64_t>(i + k + pass);
       out.write(ints, m * 8);
     }
   }
-  const std::uint64_t type_bytes = n;
-  out.write(&type_bytes, sizeof type_bytes);
+  out.begin_block(n);
   const std::string vertex(kChunk, '\1');
   for (std::size_t i = 0; i < n; i += kChunk) out.write(vertex.data(), std::min(kChunk, n - i));
-  out.write("\n  </AppendedData>\n</VTKFile>\n");
   out.commit();
 }
 
-void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {
+void write_pvd(const std::string& path, const std::vector<PvdDataSet>& datasets) {
   const auto dir = std::filesystem::absolute(path).parent_path();
   std::string text =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
       "  <Collection>\n";
-  for (const auto& [time, file] : frames) {
+  for (const auto& [time, part, file] : datasets) {
     if (!std::isfinite(time)) throw Error(fmt::format("{}: frame '{}' has time {}", path, file, time));
     std::filesystem::path f(file);
     if (f.is_absolute()) f = f.lexically_relative(dir);
     // "{}" prints the shortest text that reads back as the same double.
-    text += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time,
+    text += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"{}\" file=\"{}\"/>\n", time, part,
                         xml_escape(f.generic_string()));
   }
   text += "  </Collection>\n</VTKFile>\n";
   AtomicFile out(path);
   out.write(text);
   out.commit();
+}
+
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames) {
+  std::vector<PvdDataSet> datasets;
+  for (const auto& [time, file] : frames) datasets.push_back({time, 0, file});
+  write_pvd(path, datasets);
 }
 
 }  // namespace pbf

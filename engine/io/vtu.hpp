@@ -1,11 +1,12 @@
 #pragma once
 // VTK XML UnstructuredGrid (.vtu) frames, one VTK_VERTEX cell per particle, and the
-// ParaView collection (.pvd) that lists them with their times.
+// ParaView collection (.pvd) that lists them (and the solids' .vtp surfaces) with their times.
 //
-// The writer always produces the one layout ParaView, VisIt and meshio all read fastest:
-// LittleEndian, UInt64 block headers, every array "appended" into one raw block. The
-// reader accepts what other tools commonly write as well (inline base64 "binary" or
-// "ascii" arrays, UInt32 headers, any integer or float type), except compressed files.
+// The writer always produces the one layout ParaView, VisIt and meshio all read fastest
+// (engine/io/vtk_appended.hpp): LittleEndian, UInt64 block headers, every array "appended"
+// into one raw block. The reader accepts what other tools commonly write as well (inline
+// base64 "binary" or "ascii" arrays, UInt32 headers, any integer or float type), except
+// compressed files.
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -30,9 +31,19 @@ struct VtuArray {
 void write_vtu(const std::string& path, std::size_t n, const VtuArray& points,
                const std::vector<VtuArray>& point_data);
 
+// One DataSet of a collection: the file that holds `part` at `time`. ParaView shows the
+// parts of one time together (part 0 the particles, then one part per solid).
+struct PvdDataSet {
+  double time;
+  int part;
+  std::string file;
+};
+
 // Rewrites the whole collection (through PATH.tmp and a rename, so it is valid at every
-// moment of a run): one DataSet per (time, file). Files are written as given, so pass them
+// moment of a run), DataSets in the order given. Files are written as given, so pass them
 // relative to the .pvd's directory; an absolute one is made relative to it.
+void write_pvd(const std::string& path, const std::vector<PvdDataSet>& datasets);
+// The same with every file part 0: one (time, file) per frame.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& frames);
 
 // Reads a .vtu: column "position" (3 components) from the Points, then each PointData array

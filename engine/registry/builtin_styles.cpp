@@ -7,6 +7,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_gravity(r);
   register_pbf(r);
   register_box(r);
+  register_solid(r);
   register_vorticity(r);
   register_xsph(r);
   register_wcsph(r);

@@ -20,6 +20,7 @@ auto make_compute() {
 void register_gravity(StyleRegistry&);
 void register_pbf(StyleRegistry&);
 void register_box(StyleRegistry&);
+void register_solid(StyleRegistry&);
 void register_vorticity(StyleRegistry&);
 void register_xsph(StyleRegistry&);
 void register_dump_text(StyleRegistry&);

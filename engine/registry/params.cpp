@@ -138,6 +138,11 @@ Params::Params(const std::string& what, const std::vector<ParamSpec>& schema, co
     }
     if (values_.count(name)) throw Error(fmt::format("{}: parameter '{}' given twice", what, name));
     auto converted = coerce(value, spec->type);
+    if (!converted && spec->one_number_for_all)  // a scale of 2 is {2, 2, 2}
+      if (auto number = coerce(value, ParamType::Real)) {
+        const double v = std::get<double>(*number);
+        converted = Vec3{v, v, v};
+      }
     if (!converted)
       throw Error(fmt::format("{}: parameter '{}' must be of type {}, got {} {}", what, name, type_name(spec->type),
                               given_type(value), format_value(value)));

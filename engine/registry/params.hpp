@@ -41,6 +41,7 @@ struct ParamSpec {
   bool optional = false;                    // no default, and may be left out (Params::has)
   Range range{};                            // numbers outside are refused (default: any finite)
   std::vector<std::string> choices{};       // a string must be one of these (empty: any)
+  bool one_number_for_all = false;          // a vector may be given as one number (a scale)
 
   // The range, written where the schema lists the parameter: {...}.within(0, 1).
   ParamSpec within(double lo, double hi) && { return with_range({lo, hi, false, false}); }
@@ -48,6 +49,12 @@ struct ParamSpec {
   ParamSpec above(double lo) && { return with_range({lo, Range{}.hi, true, false}); }
   ParamSpec above_within(double lo, double hi) && { return with_range({lo, hi, true, false}); }  // (lo, hi]
   ParamSpec magnitude_at_most(double most) && { return with_range({-most, most, false, false}); }
+  // A vector that may be given as one number, standing for all three components (a scale;
+  // not an acceleration, where 9.81 for {0, 0, -9.81} would be a slip).
+  ParamSpec or_one_number() && {
+    one_number_for_all = true;
+    return std::move(*this);
+  }
   ParamSpec one_of(std::vector<std::string> names) && {
     choices = std::move(names);
     return std::move(*this);

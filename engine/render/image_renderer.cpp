@@ -14,34 +14,28 @@
 
 #include "engine/core/error.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/render/camera.hpp"
 #include "engine/render/image_text.hpp"
+#include "engine/render/solid_raster.hpp"
+#include "engine/render/tile_bins.hpp"
 
 namespace pbf {
 
+using render::Camera;
+using render::cross;
+using render::finite;
+using render::kTile;
+using render::norm;
+using render::ScreenPolygon;
+using render::TileBins;
+using render::TileRange;
+using render::unit;
+using render::Vec3;
+
 namespace {
 
-constexpr double kFieldOfViewY = 30.0 * 3.14159265358979323846 / 180.0;
-constexpr double kFitMargin = 0.92;  // the bounding sphere spans 92% of the scene area's smaller side
-constexpr int kTile = 32;            // screen tiles of kTile x kTile pixels, one task each
+// A pixel's owner: a particle's index i, a solid's triangle as n + its index, or none.
 constexpr std::uint32_t kNoParticle = std::numeric_limits<std::uint32_t>::max();
-
-using Vec3 = std::array<double, 3>;
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
-Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-bool finite(const Vec3& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
-// a / |a| for any finite non-zero a: where |a|^2 would overflow or underflow (a camera 1e300 m
-// away), a is first scaled by its largest component.
-Vec3 unit(const Vec3& a) {
-  const double n = norm(a);
-  if (n > 0 && std::isfinite(n)) return scaled(a, 1 / n);
-  const Vec3 b = scaled(a, 1 / std::max({std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2])}));
-  return scaled(b, 1 / norm(b));
-}
 
 // Text and lines are dark on a light background and light on a dark one.
 Rgb ink_for(const Rgb& background) {
@@ -77,131 +71,44 @@ Layout make_layout(const ImageSpec& spec, const TextRenderer& font) {
   return l;
 }
 
-// Perspective camera: camera coordinates right, up and forward (the view direction).
-struct Camera {
-  Vec3 eye, right, up, forward;
-  double focal;   // pixels per unit of (lateral offset / depth)
-  double cx, cy;  // the image point on the view axis
-  double near;    // nothing nearer than this is drawn
-
-  Camera(const ImageSpec& spec, const Domain& domain, int scene_width) {
-    const Vec3 lo{domain.lo[0], domain.lo[1], domain.lo[2]}, hi{domain.hi[0], domain.hi[1], domain.hi[2]};
-    const Vec3 mid = scaled({lo[0] + hi[0], lo[1] + hi[1], lo[2] + hi[2]}, 0.5);
-    const double bounding_radius = std::max(0.5 * norm(sub(hi, lo)), 1e-12);
-    const Vec3 target = spec.center.value_or(mid);
-    forward = spec.eye ? sub(target, *spec.eye) : spec.direction;
-    if (forward == Vec3{0, 0, 0} || !finite(forward)) throw Error("image: the camera position is the point it looks at");
-    forward = unit(forward);
-    if (norm(cross(forward, unit(spec.up))) <= 1e-3)
-      throw Error("image: the camera looks along 'up'; choose another 'up' or camera position");
-    right = cross(forward, spec.up);
-    if (!finite(right)) right = cross(forward, unit(spec.up));  // an 'up' of 1e308 overflows
-    right = unit(right);
-    up = cross(right, forward);
-    cx = 0.5 * scene_width;
-    cy = 0.5 * spec.height;
-    // At zoom 1 the sphere's outline, a circle of radius focal * tan(half-angle), fills
-    // kFitMargin of the smaller side of the scene area.
-    const double focal_zoom1 = 0.5 * spec.height / std::tan(0.5 * kFieldOfViewY);
-    const double outline = 0.5 * kFitMargin * std::min(scene_width, spec.height);
-    const double distance = bounding_radius / std::sin(std::atan(outline / focal_zoom1));
-    eye = spec.eye ? *spec.eye : sub(target, scaled(forward, distance));
-    focal = focal_zoom1 * spec.zoom;
-    near = 1e-6 * norm(sub(target, eye));
-  }
-
-  // Camera coordinates of a world point: lateral x, y and depth along the view direction.
-  Vec3 to_camera(const Vec3& p) const {
-    const Vec3 d = sub(p, eye);
-    return {dot(d, right), dot(d, up), dot(d, forward)};
-  }
-  double screen_x(const Vec3& c) const { return cx + focal * c[0] / c[2]; }
-  double screen_y(const Vec3& c) const { return cy - focal * c[1] / c[2]; }
-};
-
 // A particle as drawn: a disc on the screen, its centre's depth and its colour.
 struct Disc {
   float sx, sy, r, depth;
   Rgb colour;
   bool visible;
-  // The tiles the disc's bounding square overlaps; clamped in float before the conversion to
-  // int, as a disc may reach far beyond the image.
-  void tiles(int tiles_x, int tiles_y, int& tx0, int& tx1, int& ty0, int& ty1) const {
-    auto tile = [](float p, int count) { return int(std::clamp(std::floor(p / kTile), 0.0f, float(count - 1))); };
-    tx0 = tile(sx - r, tiles_x), tx1 = tile(sx + r, tiles_x), ty0 = tile(sy - r, tiles_y), ty1 = tile(sy + r, tiles_y);
+  // The tiles the disc's bounding square overlaps, if it is drawn.
+  std::optional<TileRange> tiles(const TileBins& bins) const {
+    if (!visible) return std::nullopt;
+    return TileRange(sx - r, sx + r, sy - r, sy + r, bins.tiles_x, bins.tiles_y);
   }
 };
 
-// The particles overlapping each tile of the scene area, tile by tile, each tile's in
-// ascending index.
-struct TileBins {
-  int area_width, area_height;  // the scene area, at the image's top left
-  int tiles_x, tiles_y;
-  std::vector<std::size_t> start;  // tile t's particles are particles[start[t] .. start[t+1])
-  std::vector<std::uint32_t> particles;
-};
-
-// Projects every particle into discs and bins them into tiles by a counting sort over
-// (tile, thread), with per-thread histograms of contiguous index blocks as in NeighborGrid:
-// the order within a tile is ascending index at any thread count.
-TileBins project_and_bin(const Camera& cam, const Colormap& colormap, double sphere_radius, int scene_width, int height,
-                         const real* x, const real* y, const real* z, const double* value, std::size_t n, double vmin,
-                         double vmax, std::vector<Disc>& discs) {
-  TileBins bins{scene_width, height, (scene_width + kTile - 1) / kTile, (height + kTile - 1) / kTile, {}, {}};
-  const int tile_count = bins.tiles_x * bins.tiles_y;
-  bins.start.assign(tile_count + 1, 0);
+// Projects every particle into a disc on the screen, each in its own record (parallel).
+void project_particles(const Camera& cam, const Colormap& colormap, double sphere_radius, int scene_width, int height,
+                       const real* x, const real* y, const real* z, const double* value, std::size_t n, double vmin,
+                       double vmax, std::vector<Disc>& discs) {
   discs.resize(n);
-  std::vector<std::vector<std::size_t>> histogram(omp_get_max_threads());
-#pragma omp parallel num_threads(static_cast <int>(histogram.size()))
-  {
-    const int t = omp_get_thread_num(), team = omp_get_num_threads();
-    const std::size_t begin = n * t / team, end = n * (t + 1) / team;
-    auto& hist = histogram[t];
-    hist.assign(tile_count, 0);
-    for (std::size_t i = begin; i < end; ++i) {
-      Disc& d = discs[i];
-      const Vec3 c = cam.to_camera({double(x[i]), double(y[i]), double(z[i])});
-      d.depth = static_cast<float>(c[2]);
-      d.sx = static_cast<float>(cam.screen_x(c));
-      d.sy = static_cast<float>(cam.screen_y(c));
-      // At least about a pixel wide, so that no particle vanishes however far or small.
-      d.r = std::max(0.75f, static_cast<float>(cam.focal * sphere_radius / c[2]));
-      d.colour = colormap.at(value[i], vmin, vmax);
-      d.visible = c[2] > cam.near + sphere_radius && std::isfinite(d.sx) && std::isfinite(d.sy) && std::isfinite(d.r) &&
-                  d.sx + d.r >= 0 && d.sx - d.r <= scene_width && d.sy + d.r >= 0 && d.sy - d.r <= height;
-      if (!d.visible) continue;
-      int tx0, tx1, ty0, ty1;
-      d.tiles(bins.tiles_x, bins.tiles_y, tx0, tx1, ty0, ty1);
-      for (int ty = ty0; ty <= ty1; ++ty)
-        for (int tx = tx0; tx <= tx1; ++tx) ++hist[ty * bins.tiles_x + tx];
-    }
-#pragma omp barrier
-#pragma omp single
-    {
-      std::size_t running = 0;  // exclusive prefix sum, tile-major, thread-minor
-      for (int tile = 0; tile < tile_count; ++tile) {
-        bins.start[tile] = running;
-        for (int u = 0; u < team; ++u) running += std::exchange(histogram[u][tile], running);
-      }
-      bins.start[tile_count] = running;
-      bins.particles.resize(running);
-    }
-    for (std::size_t i = begin; i < end; ++i) {
-      if (!discs[i].visible) continue;
-      int tx0, tx1, ty0, ty1;
-      discs[i].tiles(bins.tiles_x, bins.tiles_y, tx0, tx1, ty0, ty1);
-      for (int ty = ty0; ty <= ty1; ++ty)
-        for (int tx = tx0; tx <= tx1; ++tx)
-          bins.particles[hist[ty * bins.tiles_x + tx]++] = static_cast<std::uint32_t>(i);
-    }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    Disc& d = discs[i];
+    const Vec3 c = cam.to_camera({double(x[i]), double(y[i]), double(z[i])});
+    d.depth = static_cast<float>(c[2]);
+    d.sx = static_cast<float>(cam.screen_x(c));
+    d.sy = static_cast<float>(cam.screen_y(c));
+    // At least about a pixel wide, so that no particle vanishes however far or small.
+    d.r = std::max(0.75f, static_cast<float>(cam.focal * sphere_radius / c[2]));
+    d.colour = colormap.at(value[i], vmin, vmax);
+    d.visible = c[2] > cam.near + sphere_radius && std::isfinite(d.sx) && std::isfinite(d.sy) && std::isfinite(d.r) &&
+                d.sx + d.r >= 0 && d.sx - d.r <= scene_width && d.sy + d.r >= 0 && d.sy - d.r <= height;
   }
-  return bins;
 }
 
 // Renders one tile, which owns its pixels: a z-buffer pass over its discs (the depth of the
-// sphere's front surface at each pixel centre), then shading of the nearest sphere per pixel.
+// sphere's front surface at each pixel centre) and then its solid triangles, then shading of
+// the nearest per pixel.
 void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs, float sphere_radius,
-                 const Rgb& background, int width, std::vector<unsigned char>& rgb, std::vector<float>& depth) {
+                 const TileBins& triangle_bins, const std::vector<ScreenPolygon>& polygons, const Rgb& background,
+                 int width, std::vector<unsigned char>& rgb, std::vector<float>& depth) {
   const int x0 = tile % bins.tiles_x * kTile, y0 = tile / bins.tiles_x * kTile;
   const int x1 = std::min(bins.area_width, x0 + kTile), y1 = std::min(bins.area_height, y0 + kTile);
   float zbuf[kTile * kTile];
@@ -209,7 +116,7 @@ void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs,
   std::fill(std::begin(zbuf), std::end(zbuf), std::numeric_limits<float>::infinity());
   std::fill(std::begin(owner), std::end(owner), kNoParticle);
   for (std::size_t s = bins.start[tile]; s < bins.start[tile + 1]; ++s) {
-    const std::uint32_t i = bins.particles[s];
+    const std::uint32_t i = bins.items[s];
     const Disc& d = discs[i];
     const float inv_r2 = 1.0f / (d.r * d.r);
     // The pixels whose centres (p + 0.5) may lie inside the disc, within the tile.
@@ -231,6 +138,11 @@ void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs,
       }
     }
   }
+  const auto n = static_cast<std::uint32_t>(discs.size());
+  for (std::size_t s = triangle_bins.start[tile]; s < triangle_bins.start[tile + 1]; ++s) {
+    const std::uint32_t t = triangle_bins.items[s];
+    render::rasterize(polygons[t], x0, y0, x1, y1, zbuf, owner, n + t);
+  }
   const float* light = SphereShading::light;
   const float half_norm = std::sqrt(light[0] * light[0] + light[1] * light[1] + (light[2] + 1) * (light[2] + 1));
   const float half[3] = {light[0] / half_norm, light[1] / half_norm, (light[2] + 1) / half_norm};
@@ -241,6 +153,10 @@ void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs,
       depth[static_cast<std::size_t>(py) * width + px] = zbuf[k];
       if (owner[k] == kNoParticle) {
         std::copy(background.begin(), background.end(), out);
+        continue;
+      }
+      if (owner[k] >= n) {  // a solid: flat shaded
+        std::copy(polygons[owner[k] - n].colour.begin(), polygons[owner[k] - n].colour.end(), out);
         continue;
       }
       const Disc& d = discs[owner[k]];
@@ -354,26 +270,43 @@ ImageRenderer::ImageRenderer(const ImageSpec& spec) : spec_(spec), colormap_(spe
 
 void ImageRenderer::render(const Domain& domain, const real* x, const real* y, const real* z, const double* value,
                            std::size_t n, double vmin, double vmax, const std::string& caption,
-                           std::vector<unsigned char>& rgb) const {
+                           std::vector<unsigned char>& rgb, const std::vector<SolidSurface>& solids) const {
   if (!(std::isfinite(vmin) && std::isfinite(vmax) && vmin < vmax && std::isfinite(vmax - vmin)))
     throw Error(fmt::format("image: the colour range needs finite vmin < vmax, got {} and {}", vmin, vmax));
-  if (n >= kNoParticle) throw Error(fmt::format("image: cannot render {} particles (at most 2^32 - 2)", n));
+  std::size_t triangles = 0;
+  for (std::size_t s = 0; s < solids.size(); ++s) {
+    const TriangleMesh& mesh = *solids[s].mesh;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (std::uint32_t v : mesh.triangles[t])
+        if (v >= mesh.vertices.size())
+          throw Error(fmt::format("image: triangle {} of solid surface {} names vertex {}, but the surface has {}", t,
+                                  s + 1, v, mesh.vertices.size()));
+    triangles += mesh.triangles.size();
+  }
+  if (n + triangles >= kNoParticle)
+    throw Error(
+        fmt::format("image: cannot render {} particles and {} triangles (at most 2^32 - 2 together)", n, triangles));
   const int W = spec_.width, H = spec_.height;
   const Layout layout = make_layout(spec_, *font_);
   const Camera cam(spec_, domain, layout.scene_width);
 
-  // 1. Particles to discs on the screen, binned into tiles.
+  // 1. Particles to discs and solids' triangles to polygons on the screen, binned into tiles.
   std::vector<Disc> discs;
-  const TileBins bins =
-      project_and_bin(cam, colormap_, spec_.radius, layout.scene_width, H, x, y, z, value, n, vmin, vmax, discs);
+  project_particles(cam, colormap_, spec_.radius, layout.scene_width, H, x, y, z, value, n, vmin, vmax, discs);
+  TileBins bins(layout.scene_width, H);
+  bins.bin(n, [&](std::size_t i) { return discs[i].tiles(bins); });
+  const std::vector<ScreenPolygon> polygons = render::project_solids(cam, solids, layout.scene_width, H);
+  TileBins triangle_bins(layout.scene_width, H);
+  triangle_bins.bin(polygons.size(), [&](std::size_t t) { return polygons[t].tiles(triangle_bins); });
 
   // 2. The scene area, tile by tile in parallel; then the colour bar strip's background.
   rgb.resize(static_cast<std::size_t>(W) * H * 3);
   std::vector<float> depth(static_cast<std::size_t>(W) * H, std::numeric_limits<float>::infinity());
-  const int tile_count = bins.tiles_x * bins.tiles_y;
+  const int tile_count = bins.count();
 #pragma omp parallel for schedule(dynamic, 1)
   for (int tile = 0; tile < tile_count; ++tile)
-    render_tile(tile, bins, discs, static_cast<float>(spec_.radius), spec_.background, W, rgb, depth);
+    render_tile(tile, bins, discs, static_cast<float>(spec_.radius), triangle_bins, polygons, spec_.background, W, rgb,
+                depth);
   for (int py = 0; py < H; ++py)
     for (int px = layout.scene_width; px < W; ++px)
       std::copy(spec_.background.begin(), spec_.background.end(), &rgb[(static_cast<std::size_t>(py) * W + px) * 3]);

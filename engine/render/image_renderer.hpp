@@ -11,6 +11,11 @@
 // any thread count. Each pixel shows the particle whose sphere surface is nearest there, the
 // smaller particle index on a tie. Box edges are depth-tested against the particles' sphere
 // surfaces, so edges behind the fluid are hidden and edges in front of it drawn.
+//
+// Solids' surfaces share the z-buffer: opaque, flat grey triangles lit like the spheres. A
+// container shows only the triangles that face away from the camera (its floor and far walls,
+// seen from inside), so the fluid in it stays in view; an obstacle shows the ones facing it.
+// On a tie between a sphere and a triangle the sphere wins; between triangles, the first.
 #include <array>
 #include <cstddef>
 #include <memory>
@@ -19,6 +24,7 @@
 #include <vector>
 
 #include "engine/core/domain.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
 #include "engine/render/colormap.hpp"
 #include "engine/render/image_text.hpp"
 #include "engine/core/real.hpp"
@@ -51,6 +57,19 @@ struct SphereShading {
   static constexpr int shininess = 32;  // a power of two: computed by squaring
 };
 
+// A solid's surface to draw: triangles in world coordinates, counter-clockwise seen from
+// outside; `container`: the fluid is inside, so the camera is shown the inside.
+struct SolidSurface {
+  const TriangleMesh* mesh = nullptr;
+  bool container = false;
+};
+
+// The solids' shading: a neutral grey, Lambert-lit by the spheres' light (SphereShading) with
+// the normal of the side the camera sees: grey * (ambient + diffuse * max(0, n.L)).
+struct SolidShading {
+  static constexpr float grey = 190.0f;
+};
+
 class ImageRenderer {
  public:
   // Validates the spec (width and height 16..8192, zoom > 0, radius > 0, direction non-zero
@@ -62,9 +81,11 @@ class ImageRenderer {
   // Renders into rgb (resized to width*height*3, row-major, top row first). value[i] is the
   // colour field of particle i, mapped linearly from [vmin, vmax] (vmin < vmax, both finite,
   // else pbf::Error) to the colour map; values outside clamp, NaN draws grey. caption is drawn
-  // at the top left (e.g. "t = 1.250 s"). Labels are UTF-8.
+  // at the top left (e.g. "t = 1.250 s"). Labels are UTF-8. `solids` are drawn with the
+  // particles; a triangle naming a vertex its mesh lacks is a pbf::Error.
   void render(const Domain& domain, const real* x, const real* y, const real* z, const double* value, std::size_t n,
-              double vmin, double vmax, const std::string& caption, std::vector<unsigned char>& rgb) const;
+              double vmin, double vmax, const std::string& caption, std::vector<unsigned char>& rgb,
+              const std::vector<SolidSurface>& solids = {}) const;
 
   int width() const { return spec_.width; }
   int height() const { return spec_.height; }

@@ -30,7 +30,9 @@ std::vector<ParamSpec> ParticleImages::params() {
       ParamSpec{"radius", ParamType::Real, 0.0, "m", "sphere radius drawn per particle (0: 0.55 of the particle spacing)"}
           .at_least(0),
       {"box", ParamType::Bool, true, "", "draw the domain's edges"},
-      {"colorbar", ParamType::Bool, true, "", "draw the labelled colour bar"}};
+      {"colorbar", ParamType::Bool, true, "", "draw the labelled colour bar"},
+      {"solids", ParamType::Bool, true, "",
+       "draw the solids' surfaces (grey; a container shows its inside, its near walls left out)"}};
 }
 
 ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")}), min_(p.real("min")), max_(p.real("max")) {
@@ -46,6 +48,7 @@ ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")
   spec_.colormap = p.string("colormap");
   spec_.draw_box = p.boolean("box");
   spec_.colorbar = p.boolean("colorbar");
+  draw_solids_ = p.boolean("solids");
   // A placeholder radius checks every other parameter (and loads the font) now, at pbf.fix.
   ImageSpec check = spec_;
   if (check.radius == 0) check.radius = 1;
@@ -88,8 +91,11 @@ const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
   }
   std::vector<real> x(n), y(n), z(n);
   for (std::size_t i = 0; i < n; ++i) x[i] = positions_[3 * i], y[i] = positions_[3 * i + 1], z[i] = positions_[3 * i + 2];
+  std::vector<SolidSurface> solids;
+  if (draw_solids_)
+    for (const SolidBody* s : sim.solid_bodies()) solids.push_back({&s->surface(), s->fluid_inside()});
   renderer_->render(sim.domain(), x.data(), y.data(), z.data(), scalar_.data(), n, lo, hi,
-                    fmt::format("t = {:.3f} s", sim.time()), rgb_);
+                    fmt::format("t = {:.3f} s", sim.time()), rgb_, solids);
   return rgb_;
 }
 

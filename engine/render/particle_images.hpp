@@ -1,6 +1,7 @@
 #pragma once
 // Pictures of the particles for dump/image and dump/movie: the parameters both styles take
-// (colour field and scale, camera, size) and the rendering of the current state.
+// (colour field and scale, camera, size, whether to draw the solids) and the rendering of the
+// current state.
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ class ParticleImages {
   std::optional<ImageRenderer> renderer_;
   DumpFields color_;
   double min_, max_;
+  bool draw_solids_ = true;
   std::vector<real> values_, positions_;
   std::vector<double> scalar_;
   std::vector<unsigned char> rgb_;

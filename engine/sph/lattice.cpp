@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
+#include "engine/geometry/shape.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/sph/resolution.hpp"
 #include "engine/core/simulation.hpp"
@@ -11,7 +12,7 @@
 namespace pbf {
 
 std::size_t add_lattice(Simulation& sim, const double lo[3], const double hi[3], double spacing,
-                        const double velocity[3], const double* sphere_center, double sphere_radius) {
+                        const double velocity[3], const Shape* inside) {
   if (!(spacing > 0) || !std::isfinite(spacing))
     throw Error(fmt::format("lattice: spacing must be positive, got {}", spacing));
   if (sim.kernel_radius() <= 0) throw Error("lattice: set the kernel radius (pbf.kernel_radius) first");
@@ -43,15 +44,12 @@ std::size_t add_lattice(Simulation& sim, const double lo[3], const double hi[3],
     for (long j = 0; j < ny; ++j)
       for (long i = 0; i < nx; ++i) {
         const double q[3] = {lo[0] + (i + 0.5) * spacing, lo[1] + (j + 0.5) * spacing, lo[2] + (k + 0.5) * spacing};
-        if (sphere_radius > 0) {
-          const double dx = q[0] - sphere_center[0], dy = q[1] - sphere_center[1], dz = q[2] - sphere_center[2];
-          if (dx * dx + dy * dy + dz * dz > sphere_radius * sphere_radius) continue;
-        }
+        if (inside && inside->signed_distance({q[0], q[1], q[2]}) > 0) continue;
         const real p[3] = {real(q[0]), real(q[1]), real(q[2])};
         sim.particles().add(p, v, mass);
         ++added;
       }
-  if (added == 0) throw Error("lattice: the sphere holds no lattice site (a radius below the spacing?)");
+  if (added == 0) throw Error("lattice: the shape holds no lattice site (smaller than the spacing?)");
   sim.positions_changed();
   return added;
 }

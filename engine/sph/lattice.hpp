@@ -6,10 +6,12 @@ namespace pbf {
 
 class Simulation;
 
-// Particles at lo + (i + 1/2) s along each axis while inside [lo, hi] (and, if
-// sphere_radius > 0, within that distance of sphere_center: a drop), with the given velocity
-// and the lattice mass rule (engine/mass.hpp). Returns how many were added.
+class Shape;
+
+// Particles at lo + (i + 1/2) s along each axis while inside [lo, hi] (and, if `inside` is
+// given, inside that shape: a drop, water filling a closed mesh), with the given velocity and
+// the lattice mass rule (engine/mass.hpp). Returns how many were added.
 std::size_t add_lattice(Simulation& sim, const double lo[3], const double hi[3], double spacing,
-                        const double velocity[3], const double* sphere_center = nullptr, double sphere_radius = 0);
+                        const double velocity[3], const Shape* inside = nullptr);
 
 }  // namespace pbf

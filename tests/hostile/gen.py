@@ -107,7 +107,24 @@ EXTRA = {
     "dump/movie": ('pbf.fix("movie", "dump/movie", {%s})',
                    [("path", '"out/m.mp4"'), ("every", "1"), ("width", "32"), ("height", "24")]),
     "restart": ('pbf.fix("restarts", "restart", {%s})', [("path", '"out/r.*.restart"'), ("every", "1")]),
+    # A sphere obstacle 0.04 m across, inside the domain, over the corner of the fluid block
+    # (the particles created inside it are left out at the start of the run; as a container,
+    # fluid = "inside", it keeps those).
+    "solid": ('pbf.fix("ball", "solid", {%s})',
+              [("shape", '"sphere"'), ("center", "{0.06, 0.06, 0.06}"), ("radius", "0.02")]),
 }
+# The solid's parameters of the other shapes are tested on a solid of that shape: a box and a
+# pillar (cylinder) in the corner x, y > 0.065 away from the fluid, a floor plane at z = 0.01
+# below it, and for 'file' a mesh (the default shape) with nothing else.
+SOLID_BASES = {
+    "box": [("shape", '"box"'), ("lo", "{0.065, 0.065, 0}"), ("hi", "{0.095, 0.095, 0.03}")],
+    "cylinder": [("shape", '"cylinder"'), ("base", "{0.08, 0.08, 0.02}"), ("top", "{0.08, 0.08, 0.08}"),
+                 ("radius", "0.01")],
+    "plane": [("shape", '"plane"'), ("point", "{0.05, 0.05, 0.01}"), ("normal", "{0, 0, 1}")],
+    "mesh": [],
+}
+SOLID_SHAPE_OF = {"lo": "box", "hi": "box", "base": "cylinder", "top": "cylinder", "point": "plane",
+                  "normal": "plane", "file": "mesh"}
 
 
 def lua_script(comment, lines):
@@ -145,6 +162,8 @@ def style_script(style, pairs, extra_after=()):
 
 def base_pairs(style, param):
     pairs = list(EXTRA[style][1]) if style in EXTRA else []
+    if style == "solid" and param in SOLID_SHAPE_OF:
+        pairs = list(SOLID_BASES[SOLID_SHAPE_OF[param]])
     if param in ("interval", "every"):
         pairs = [(k, v) for k, v in pairs if k not in ("interval", "every")]
     return [(k, v) for k, v in pairs if k != param]
@@ -222,7 +241,37 @@ NUMERIC = [
      "(restarts insure long runs; a short one needs none)"),
     ("restart", "every", "int", "RRRRRR", [], "a step count >= 1"),
     ("front", "percentile", "num", "RRRARR", [], "a percentage in [0, 100]"),
+    ("solid", "friction", "num", "RRRARA", [], "as box: a decay rate >= 0; 1e300/s is a no-slip wall"),
+    ("solid", "radius", "num", "RRRRRR", [], "a sphere's radius in (0, 1e6] m"),
+    ("solid", "radius", "num", "RRRRRR", SOLID_BASES["cylinder"][:-1], "a cylinder's radius in (0, 1e6] m"),
+    ("solid", "scale", "vec", "RRRRRR", [], "a factor in (0, 1e6] per axis: 0 has no size, -1 mirrors "
+     "(not a scale), 1e300 is beyond any scene"),
+    ("solid", "scale", "one", "RRRRRR", [], "one number for all three axes: as {s, s, s}"),
+    ("solid", "rotate", "vec", "RRRAAR", [], "any finite angle up to 1e6 degrees; -1 degree about each axis "
+     "moves the sphere a little, still in the domain"),
+    ("solid", "translate", "vec", "RRRARR", [], "0 leaves the sphere where it is; -1 m moves it entirely out of "
+     "the 0.1 m domain; 1e300 m is beyond any scene"),
+    ("solid", "center", "vec", "RRRARR", [], "the origin puts the sphere on the domain's corner (an eighth of it "
+     "inside, 0.02 m deep: legal); -1 puts it entirely outside the domain; 1e300 is beyond any scene"),
+    ("solid", "lo", "vec", "RRRAAR", [], "a box's lower corner: 0 and -1 give a box from there to hi (partly "
+     "outside the domain, the fluid's lowest layer left out), legal; 1e300 exceeds hi and any scene"),
+    ("solid", "hi", "vec", "RRRRRR", [], "a box's upper corner must exceed lo = {0.065, 0.065, 0}"),
+    ("solid", "base", "vec", "RRRAAR", [], "a cylinder's base: 0 and -1 give a pillar along the diagonal "
+     "through the fluid (the particles in it are left out), legal; 1e300 is beyond any scene"),
+    ("solid", "top", "vec", "RRRAAR", [], "a cylinder's top: 0 gives a pillar lying on the floor, -1 one "
+     "leaving the domain through it, both legal; 1e300 is beyond any scene"),
+    ("solid", "point", "vec", "RRRARR", [], "a plane through the origin with normal +z is the floor of the domain "
+     "(legal); at z = -1 the solid z < -1 lies entirely outside the domain; 1e300 is beyond any scene"),
+    ("solid", "normal", "vec", "RRRRAR", [], "a direction: {0,0,0} has none; {-1,-1,-1} puts the solid above "
+     "the plane x+y+z = 0.11 (part of the fluid left out), legal; its range is [-1e6, 1e6], so 1e300 is refused"),
 ]
+# Refusals that name what the value did rather than the parameter: a solid moved out of the
+# domain is refused when the run starts, naming the solid ('ball') and saying it lies outside.
+NUMERIC_EXPECT = {
+    ("solid", "translate", "neg"): "ball && outside",
+    ("solid", "center", "neg"): "ball && outside",
+    ("solid", "point", "neg"): "ball && outside",
+}
 
 # The parameters that are not numbers: the numbers NaN and 0 and two values of another
 # wrong type are refused; the specific values listed are decided one by one.
@@ -255,6 +304,14 @@ NON_NUMERIC = [
     ("restart", "path", "string", [("empty", '""', "R"), ("nostar", '"out/r.restart"', "R")]),
     ("front", "axis", "string", [("empty", '""', "R"), ("capital", '"X"', "R"), ("w", '"w"', "R"),
                                  ("z", '"z"', "A")]),
+    ("solid", "shape", "string", [("empty", '""', "R"), ("capital", '"Sphere"', "R"), ("unknown", '"cube"', "R"),
+                                  ("box", '"box"', "R"), ("mesh", '"mesh"', "R"), ("sphere", '"sphere"', "A")]),
+    ("solid", "fluid", "string", [("empty", '""', "R"), ("capital", '"Inside"', "R"), ("both", '"both"', "R"),
+                                  ("inside", '"inside"', "A"), ("outside", '"outside"', "A")]),
+    ("solid", "file", "string", [("empty", '""', "R"), ("missing", '"nope.obj"', "R"),
+                                 ("directory", '"."', "R"), ("nul", '"cube.obj\\0.stl"', "R")]),
+    ("solid", "no_slip", "bool", [("true", "true", "A")]),
+    ("solid", "wall_density", "bool", [("false", "false", "A")]),
 ]
 WRONG_TYPE = {
     "bool": [("nan", "0/0"), ("zero", "0"), ("one", "1"), ("string", '"true"')],
@@ -268,6 +325,7 @@ def safe(style):
 
 
 def lua_value(kind, value):
+    """A value as Lua: three components for a vector; kind 'one' is a vector given as one number."""
     return "{%s, %s, %s}" % (value, value, value) if kind == "vec" else value
 
 
@@ -278,15 +336,20 @@ def gen_lua(g):
               "and 1e300, in a tiny run (64 particles, 2 steps).")
     for style, param, kind, outcomes, extra, reason in NUMERIC:
         for (label, value), code in zip(VALUES, outcomes):
-            name = f"p_{safe(style)}_{param}_{label}"
-            pairs = base_pairs(style, param) + extra + [(param, lua_value(kind, value))]
+            key = param + ("_one" if kind == "one" else "")
+            key += "_cylinder" if ("shape", '"cylinder"') in extra else ""
+            name = f"p_{safe(style)}_{key}_{label}"
+            # Extra pairs naming a shape replace the base solid; others replace their namesakes.
+            base = [] if any(k == "shape" for k, _ in extra) else [
+                (k, v) for k, v in base_pairs(style, param) if k not in {k2 for k2, _ in extra}]
+            pairs = base + extra + [(param, lua_value(kind, value))]
             outcome = OUTCOME[code]
             text, line = lua_script(f"fix/compute {style}: {param} = {lua_value(kind, value)}: {outcome} ({reason})",
                                     style_script(style, pairs))
             g.file(f"{name}.lua", text)
             if code == "R":
                 where = f"{name}.lua:{line}:" if label in ("nan", "inf", "ninf") else f"{name}.lua:"
-                expect = f"{where} && {param}"
+                expect = f"{where} && {NUMERIC_EXPECT.get((style, param, label), param)}"
             elif code == "W":
                 expect = param
             else:
@@ -1532,6 +1595,212 @@ def gen_disk(g):
     g.case("path_restart_too_long", f"run {d}/path_restart_too_long.lua", "refused", "path_restart_too_long.lua:")
 
 
+# ======================================================================= mesh files
+
+# The unit cube [0, 1]^3: 8 corners, 12 triangles counter-clockwise seen from outside
+# (scenarios/geometry/unit_box.obj). The run scripts place it.
+CUBE_V = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 0, 1), (1, 0, 1), (0, 1, 1), (1, 1, 1)]
+CUBE_F = [(1, 3, 4), (1, 4, 2), (5, 6, 8), (5, 8, 7), (1, 2, 6), (1, 6, 5), (3, 7, 8), (3, 8, 4), (1, 5, 7),
+          (1, 7, 3), (2, 4, 8), (2, 8, 6)]
+
+
+def obj_text(vertices=CUBE_V, faces=CUBE_F, comment="", head=""):
+    lines = [f"# {comment}"] if comment else []
+    lines += [head] if head else []
+    lines += ["v %s %s %s" % tuple(v) for v in vertices] + ["f " + " ".join(str(i) for i in f) for f in faces]
+    return "\n".join(lines) + "\n"
+
+
+def stl_binary(vertices=CUBE_V, faces=CUBE_F, count=None, header=b"binary STL: the unit cube"):
+    out = header.ljust(80, b" ") + struct.pack("<I", len(faces) if count is None else count)
+    for f in faces:
+        out += struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *vertices[i - 1]) for i in f) + b"\0\0"
+    return out
+
+
+def stl_ascii(vertices=CUBE_V, faces=CUBE_F):
+    text = "solid cube\n"
+    for f in faces:
+        text += (" facet normal 0 0 0\n  outer loop\n" + "".join("   vertex %s %s %s\n" % tuple(vertices[i - 1])
+                                                                 for i in f) + "  endloop\n endfacet\n")
+    return text + "endsolid cube\n"
+
+
+# The Assimp crash of fuzz/corpus/mesh/regression_assimp_mtl_crash.obj, byte for byte: the
+# fuzz target's first byte ('o') picks the extension hint, the rest is the file.
+ASSIMP_MTL_CRASH = b"omtllib v \nmap_Kn"
+
+
+def gen_mesh(g):
+    d = "{dir}"
+    g.file("run.lua", "\n".join([
+        "-- run.lua: a mesh file (-v file=PATH), in the coordinates of the unit cube [0, 1]^3, used as",
+        "--   -v use=container  the solid fix with fluid = \"inside\", scaled to [0.01, 0.09]^3 around the fluid;",
+        "--   -v use=obstacle   the solid fix (fluid outside), scaled to 0.03 m in the corner x, y > 0.065 beside",
+        "--                     the fluid;",
+        "--   -v use=lattice    pbf.lattice{mesh = PATH}, scaled to [0.02, 0.06]^3: 64 particles.",
+        "-- The domain is [0, 0.1]^3, h = 0.02 m, the lattice spacing 0.01 m; then two steps.",
+        "pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}",
+        "pbf.kernel_radius(0.02)",
+        "pbf.timestep(0.001)",
+        'if var.use == "lattice" then',
+        "  pbf.lattice{mesh = var.file, scale = 0.04, translate = {0.02, 0.02, 0.02}, spacing = 0.01}",
+        "else",
+        "  pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}",
+        "end",
+        'pbf.fix("gravity", "gravity", {})',
+        'pbf.fix("pbf", "pbf", {})',
+        'pbf.fix("walls", "box", {})',
+        'if var.use == "container" then',
+        '  pbf.fix("tank", "solid", {file = var.file, fluid = "inside", scale = 0.08, translate = {0.01, 0.01, 0.01}})',
+        'elseif var.use == "obstacle" then',
+        '  pbf.fix("block", "solid", {file = var.file, scale = 0.03, translate = {0.065, 0.065, 0.01}})',
+        'elseif var.use ~= "lattice" then',
+        '  error("-v use=container, obstacle or lattice")',
+        "end",
+        "pbf.run(2)",
+    ]) + "\n")
+    solid_name = {"container": "tank", "obstacle": "block"}
+
+    def case(name, fname, uses, outcome, expect=None, setup="", path=None):
+        """The file fname (written or made by setup) used in each of `uses`. A refusal names the
+        file; `expect` (a dict by use, or one text) replaces that."""
+        for use in uses:
+            target = path if path is not None else f"{d}/{fname}"
+            exp = "-"
+            if outcome == "refused":
+                exp = expect.get(use, fname) if isinstance(expect, dict) else (expect or fname)
+            g.case(f"{name}_{use}", f"run {d}/run.lua -v use={use} -v file={target}", outcome, exp, setup)
+
+    both = ("container", "lattice")
+    every = ("container", "obstacle", "lattice")
+
+    g.section("Controls: the unit cube as OBJ (triangles, quads, faces turned inward, upper-case name, a "
+              "material library that is not there), as binary STL (also with a header that starts with 'solid') "
+              "and ASCII STL, and two cubes apart: accepted as container, obstacle and lattice.")
+    controls = [
+        ("cube_obj", "cube.obj", obj_text(comment="the unit cube")),
+        ("cube_stl", "cube.stl", stl_binary()),
+        ("cube_ascii_stl", "cube_ascii.stl", stl_ascii()),
+        ("cube_stl_solid_header", "cube_solid_header.stl", stl_binary(header=b"solid cube, but binary")),
+        ("cube_quads", "cube_quads.obj", obj_text(faces=[(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4),
+                                                         (1, 5, 7, 3), (2, 4, 8, 6)], comment="quads")),
+        ("cube_inside_out", "cube_inside_out.obj", obj_text(faces=[(a, c, b) for a, b, c in CUBE_F],
+                                                            comment="every face turned inward: oriented for you")),
+        ("cube_upper_case", "CUBE.OBJ", obj_text(comment="the extension in capitals")),
+        ("cube_missing_mtl", "cube_mtl.obj", obj_text(comment="a material library that is not there",
+                                                      head="mtllib nosuch.mtl\nusemtl steel")),
+        ("two_cubes", "two_cubes.obj", obj_text(vertices=CUBE_V + [(x + 2, y, z) for x, y, z in CUBE_V],
+                                                faces=CUBE_F + [(a + 8, b + 8, c + 8) for a, b, c in CUBE_F],
+                                                comment="two closed cubes apart (the second beside the domain)")),
+    ]
+    for name, fname, content in controls:
+        g.file(fname, content)
+        case(name, fname, every, "accepted")
+
+    g.section("No mesh at all: a missing file, a directory, a device, an empty file, binary garbage, text that "
+              "is not a mesh, points and lines only. Refused, naming the file, by the solid fix and by "
+              "pbf.lattice.")
+    case("missing", "nope.obj", both, "refused", path="nope.obj")
+    case("directory", "dir.obj", both, "refused", setup="mkdir=dir.obj", path="dir.obj")
+    case("dev_zero", "z.obj", both, "refused", setup="link=z.obj:/dev/zero; as=4G; timeout=10", path="z.obj")
+    case("dev_urandom", "r.stl", both, "refused", setup="link=r.stl:/dev/urandom; as=4G; timeout=10", path="r.stl")
+    for fname in ("empty.obj", "empty.stl"):
+        g.file(fname, b"")
+        case(fname.replace(".", "_"), fname, both, "refused")
+    for seed, fname in enumerate(("garbage.obj", "garbage.stl", "garbage.bin"), 11):
+        g.file(fname, bytes(random.Random(seed).randrange(256) for _ in range(700)))
+        case(fname.replace(".", "_"), fname, both, "refused")
+    for fname in ("text.obj", "text.stl", "text.txt"):
+        g.file(fname, "this is not a mesh,\njust some words.\n")
+        case(fname.replace(".", "_"), fname, both, "refused")
+    g.file("points_lines.obj", "# points and lines, no face\nv 0 0 0\nv 1 0 0\nv 0 1 0\np 1\nl 1 2\nl 2 3\n")
+    case("points_lines", "points_lines.obj", both, "refused")
+
+    g.section("Cut and lying files: a binary STL cut in its header, in its count, after it, inside the first "
+              "triangle, after 6 of 12 triangles, 1 byte short; a triangle count beyond the file's size; an ASCII "
+              "STL cut in the middle of a facet.")
+    cube = stl_binary()
+    for cut in (40, 82, 84, 109, 84 + 6 * 50, len(cube) - 1):
+        fname = f"cut_{cut}.stl"
+        g.file(fname, cube[:cut])
+        case(f"stl_cut_{cut}", fname, both, "refused")
+    for label, count in (("13", 13), ("2e9", 2_000_000_000), ("max", 2 ** 32 - 1)):
+        fname = f"count_{label}.stl"
+        g.file(fname, stl_binary(count=count))
+        case(f"stl_count_{label}", fname, both, "refused", setup="as=4G; timeout=10")
+    text = stl_ascii()
+    g.file("ascii_cut.stl", text[:text.index("vertex", len(text) // 2) + 10])
+    case("ascii_stl_cut", "ascii_cut.stl", both, "refused")
+    facet = text.index("facet", text.index("endfacet") + 8)  # where the second facet starts
+    g.file("ascii_cut_between.stl", text[:text.index(" facet", facet + (len(text) - facet) // 2)])
+    case("ascii_stl_cut_between_facets", "ascii_cut_between.stl", both, "refused")
+    # Only the last line missing: every facet is there and the surface is closed, nothing is lost.
+    g.file("ascii_no_end.stl", text[:text.rindex("endsolid")])
+    case("ascii_stl_no_endsolid", "ascii_no_end.stl", both, "accepted")
+
+    g.section("Numbers that are no coordinates: NaN, infinity, 1e400 (overflows to infinity), 1e30 m (beyond the "
+              "1e6 m of any scene), in OBJ and in binary STL.")
+    nan_v = [("nan", 0, 0)] + CUBE_V[1:]
+    for label, vertices in [("nan", nan_v), ("inf", CUBE_V[:3] + [("inf", 1, 0)] + CUBE_V[4:]),
+                            ("ninf", CUBE_V[:7] + [(1, 1, "-inf")]),
+                            ("overflow", CUBE_V[:3] + [("1e400", 1, 0)] + CUBE_V[4:]),
+                            ("1e30", [(x * 1e30, y * 1e30, z * 1e30) for x, y, z in CUBE_V])]:
+        fname = f"coord_{label}.obj"
+        g.file(fname, obj_text(vertices=vertices, comment=f"a vertex coordinate {label}"))
+        case(f"obj_coord_{label}", fname, every if label == "1e30" else both, "refused")
+    for label, vertices in [("nan", [(float("nan"), 0, 0)] + CUBE_V[1:]),
+                            ("inf", CUBE_V[:3] + [(float("inf"), 1, 0)] + CUBE_V[4:]),
+                            ("1e30", [(x * 1e30, y, z) for x, y, z in CUBE_V])]:
+        fname = f"coord_{label}.stl"
+        g.file(fname, stl_binary(vertices=vertices))
+        case(f"stl_coord_{label}", fname, both, "refused")
+
+    g.section("Faces that are no triangles: an index beyond the vertices (positive, negative, 0, past 2^32), a "
+              "corner repeated, three corners on a line (zero area); the Assimp regressions of the fuzz corpus.")
+    for label, face in [("positive", (2, 8, 99)), ("negative", (-1, -2, -99)), ("zero", (0, 8, 6)),
+                        ("wrap", (2, 8, 2 ** 32 + 6))]:
+        fname = f"index_{label}.obj"
+        g.file(fname, obj_text(faces=CUBE_F[:-1] + [face], comment=f"face {face}: an index out of range"))
+        case(f"obj_index_{label}", fname, both, "refused")
+    g.file("repeated_vertex.obj", obj_text(faces=CUBE_F[:-1] + [(2, 8, 8)], comment="a face with a corner twice"))
+    case("repeated_vertex", "repeated_vertex.obj", both, "refused")
+    g.file("zero_area.obj", obj_text(vertices=CUBE_V + [(0.5, 0, 0)], faces=CUBE_F + [(1, 9, 2)],
+                                     comment="a triangle of zero area: three corners on an edge of the cube"))
+    case("zero_area", "zero_area.obj", both, "refused")
+    g.file("assimp_mtl_crash.obj", ASSIMP_MTL_CRASH)
+    case("assimp_mtl_crash", "assimp_mtl_crash.obj", both, "refused")
+    g.file("assimp_mtl_crash_file.obj", ASSIMP_MTL_CRASH[1:])
+    case("assimp_mtl_crash_file", "assimp_mtl_crash_file.obj", both, "refused")
+    g.file("assimp_leak.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n")
+    case("assimp_leak", "assimp_leak.obj", both, "refused")
+
+    g.section("Surfaces that are not closed: a cube without a face (open), with a face flipped, two cubes "
+              "sharing an edge (four triangles on it). Refused as container, as obstacle and by pbf.lattice.")
+    flipped = list(CUBE_F)
+    flipped[-2:] = [(2, 8, 4), (2, 6, 8)]
+    for name, fname, content in [
+            ("open", "open.obj", obj_text(faces=CUBE_F[:-2], comment="the cube without its face x = 1")),
+            ("flipped", "flipped.obj", obj_text(faces=flipped, comment="the face x = 1 turned inward")),
+            ("crowded", "crowded.obj", obj_text(vertices=CUBE_V + [(x + 1, y + 1, z) for x, y, z in CUBE_V],
+                                                faces=CUBE_F + [(a + 8, b + 8, c + 8) for a, b, c in CUBE_F],
+                                                comment="two cubes sharing an edge"))]:
+        g.file(fname, content)
+        case(name, fname, every, "refused")
+
+    g.section("Meshes the scene cannot use: placed entirely outside the domain (refused naming the solid, or the "
+              "file for pbf.lattice), thinner (0.0015 m) than the particle spacing as an obstacle (the fluid "
+              "would pass through it; in pbf.lattice it holds no lattice site).")
+    g.file("outside.obj", obj_text(vertices=[(x + 10, y + 10, z + 10) for x, y, z in CUBE_V],
+                                   comment="the cube moved to [10, 11]^3: outside the domain once placed"))
+    case("outside", "outside.obj", every, "refused",
+         expect={"container": "outside.obj || tank", "obstacle": "outside.obj || block"})
+    g.file("thin.obj", obj_text(vertices=[(x, y, z * 0.05) for x, y, z in CUBE_V],
+                                comment="a slab 0.05 thick: 0.0015 m as an obstacle, 0.002 m in the lattice"))
+    case("thin", "thin.obj", ("obstacle", "lattice"), "refused",
+         expect={"obstacle": "thin.obj || block", "lattice": "thin.obj || spacing"})
+
+
 # ======================================================================= command line
 
 def gen_cli(g):
@@ -1597,9 +1866,10 @@ def main():
               Group("particles", "Particle files: .csv and .vtu (read by particles/run.lua)"),
               Group("restart", "Restart files: damaged copies of a base restart the binary under test writes"),
               Group("disk", "Full disks and paths that cannot be written"),
+              Group("mesh", "Mesh files given to the solid fix and to pbf.lattice (run by mesh/run.lua)"),
               Group("cli", "Command-line misuse")]
     gen = {"lua": gen_lua, "scene": gen_scene, "particles": gen_particles, "restart": gen_restart,
-           "disk": gen_disk, "cli": gen_cli}
+           "disk": gen_disk, "mesh": gen_mesh, "cli": gen_cli}
     total = 0
     for g in groups:
         gen[g.name](g)

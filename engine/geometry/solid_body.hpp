@@ -1,0 +1,25 @@
+#pragma once
+// What the outputs need to know of a solid: its name, its surface where it is now (world
+// coordinates) and which side of it the fluid is on. The `solid` fix implements it.
+#include <cstdint>
+#include <string>
+
+#include "engine/geometry/triangle_mesh.hpp"
+
+namespace pbf {
+
+class SolidBody {
+ public:
+  virtual ~SolidBody() = default;
+  // The solid's fix id, used in file names.
+  virtual const std::string& name() const = 0;
+  // The surface at the current time, in world coordinates.
+  virtual const TriangleMesh& surface() const = 0;
+  // Changes whenever the surface moves (a static solid keeps 0), so an output writes a
+  // surface file again only when it changed.
+  virtual std::uint64_t surface_version() const { return 0; }
+  // True for a container (fluid inside the surface), false for an obstacle.
+  virtual bool fluid_inside() const = 0;
+};
+
+}  // namespace pbf

@@ -1,0 +1,308 @@
+#include "engine/geometry/solid_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "engine/core/error.hpp"
+#include "engine/sph/kernels.hpp"
+#include "engine/sph/wall_density.hpp"
+
+namespace pbf {
+
+namespace {
+
+// A brick's centre is at most this far from its nodes.
+double brick_reach(int cells_per_brick, double cell) { return 0.5 * std::sqrt(3.0) * cells_per_brick * cell; }
+
+// The centre of sub-cell j of a cell of size c, relative to the cell's centre.
+Point sub_offset(int j, double c) {
+  constexpr int M = 4;
+  return {c * ((j % M + 0.5) / M - 0.5), c * ((j / M % M + 0.5) / M - 0.5), c * ((j / (M * M) + 0.5) / M - 0.5)};
+}
+
+// The wall's share of a cell around a node at distance d into the fluid.
+double occupancy(double d, double delta, double cell) { return std::clamp(0.5 - (d + delta) / cell, 0.0, 1.0); }
+
+}  // namespace
+
+double SolidMap::required_reach(double h, double cell, double delta) {
+  return h + 2 * cell + std::abs(delta) + brick_reach(B, cell);
+}
+
+void SolidMap::build(const Shape& shape, bool fluid_inside, const Region& region, const HalfSpaceWall& wall,
+                     const Kernels& kernels) {
+  const double h = kernels.h, c = region.cell, delta = wall.delta();
+  if (shape.reach() < required_reach(h, c, delta))
+    throw Error(fmt::format("solid map: the shape's distances reach {} m, {} m are needed", shape.reach(),
+                            required_reach(h, c, delta)));
+  wall_ = &wall;
+  cell_ = c;
+  inv_cell_ = real(1 / c);
+  // Nodes cover the domain and, beyond it, every node a convolution near the domain reads.
+  const double margin = h + 3 * c;
+  std::int64_t count = 1;
+  for (int a = 0; a < 3; ++a) {
+    origin_[a] = c * std::floor((region.lo[a] - margin) / c);
+    origin_r_[a] = real(origin_[a]);
+    const double cells = std::ceil((region.hi[a] + margin - origin_[a]) / c);
+    bricks_[a] = static_cast<std::int64_t>(std::ceil(cells / B));
+    count *= bricks_[a];
+  }
+  if (count > (std::int64_t(1) << 31))
+    throw Error(fmt::format("solid map: {} bricks of {} m; the domain is too large for this kernel radius", count,
+                            B * c));
+  brick_of_.assign(static_cast<std::size_t>(count), kFluid);
+
+  // Which bricks are near the surface: judged at their centres.
+  const double sign = fluid_inside ? -1 : 1;
+  const double reach = brick_reach(B, c);
+  const double below = -(2 * c + std::abs(delta) + reach), above = h + c + std::abs(delta) + reach;
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t b = 0; b < count; ++b) {
+    const std::int64_t bx = b % bricks_[0], by = (b / bricks_[0]) % bricks_[1], bz = b / (bricks_[0] * bricks_[1]);
+    const Point centre{origin_[0] + (bx + 0.5) * B * c, origin_[1] + (by + 0.5) * B * c,
+                       origin_[2] + (bz + 0.5) * B * c};
+    const double d = sign * shape.signed_distance(centre);
+    brick_of_[b] = d <= below ? kWall : (d >= above ? kFluid : 0);
+  }
+  active_ = 0;
+  corner_.clear();
+  for (std::int64_t b = 0; b < count; ++b) {
+    if (brick_of_[b] != 0) continue;
+    brick_of_[b] = static_cast<std::int32_t>(active_++);
+    corner_.push_back(b % bricks_[0] * B);
+    corner_.push_back((b / bricks_[0]) % bricks_[1] * B);
+    corner_.push_back(b / (bricks_[0] * bricks_[1]) * B);
+  }
+  nodes_.assign(active_ * kNodes, Node{0, 0});
+
+  // Distances at the nodes, and the wall's share of each node's cell: from the distance where
+  // the surface is far from the cell; near it, averaged over 4^3 sub-cells, so that the share
+  // is right where the surface bends (at an edge a cell is three quarters wall, not half).
+  // A shape whose distances are themselves trilinear in a grid of this cell size (a mesh's)
+  // is sampled between nodes through the map's own interpolation, at no further cost.
+  auto node_position = [&](std::size_t k, int n) {
+    return Point{origin_[0] + double(corner_[3 * k] + n % N) * c, origin_[1] + double(corner_[3 * k + 1] + n / N % N) * c,
+                 origin_[2] + double(corner_[3 * k + 2] + n / (N * N)) * c};
+  };
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::size_t k = 0; k < active_; ++k)
+    for (int n = 0; n < kNodes; ++n) nodes_[k * kNodes + n].d = float(sign * shape.signed_distance(node_position(k, n)));
+  auto distance_at = [&](const Point& q) {
+    real d, g[3];
+    if (shape.grid_cell() == c && distance(real(q[0]), real(q[1]), real(q[2]), d, g) == Where::near) return double(d);
+    return sign * shape.signed_distance(q);
+  };
+  occupancy_.assign(active_ * kNodes, {0.0f, 0.0f, 0.0f, 0.0f});
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::size_t k = 0; k < active_; ++k)
+    for (int n = 0; n < kNodes; ++n) {
+      const Point p = node_position(k, n);
+      const double d = nodes_[k * kNodes + n].d;
+      auto& share = occupancy_[k * kNodes + n];
+      if (std::abs(d + delta) >= c) {
+        share[0] = d + delta < 0 ? 1.0f : 0.0f;
+        continue;
+      }
+      double sum[4] = {0, 0, 0, 0};
+      for (int sub = 0; sub < kSubCells; ++sub) {
+        const Point o = sub_offset(sub, c);
+        const double occ = occupancy(distance_at({p[0] + o[0], p[1] + o[1], p[2] + o[2]}), delta, c / kSub);
+        sum[0] += occ;
+        for (int a = 0; a < 3; ++a) sum[a + 1] += occ * o[a];
+      }
+      for (int a = 0; a < 4; ++a) share[a] = float(sum[a] / kSubCells);
+    }
+  std::vector<Tap> taps;
+  const double S = make_taps(kernels, taps);
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::size_t k = 0; k < active_; ++k) convolve(k, taps, S, h);
+  occupancy_ = {};
+  // The nodes on a brick's upper faces from the bricks they belong to.
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < active_; ++k)
+    for (int n = 0; n < kNodes; ++n) {
+      const int l[3] = {n % N, n / N % N, n / (N * N)};
+      if (l[0] < B && l[1] < B && l[2] < B) continue;
+      nodes_[k * kNodes + n].d_eff = float(owned_d_eff(corner_[3 * k] + l[0], corner_[3 * k + 1] + l[1],
+                                                       corner_[3 * k + 2] + l[2], nodes_[k * kNodes + n].d));
+    }
+}
+
+double SolidMap::deepest() const {
+  for (std::int32_t b : brick_of_)
+    if (b == kWall) return std::numeric_limits<double>::infinity();
+  double depth = -std::numeric_limits<double>::infinity();
+  for (const Node& n : nodes_) depth = std::max(depth, -double(n.d));
+  return depth;
+}
+
+double SolidMap::owned_d_eff(std::int64_t ix, std::int64_t iy, std::int64_t iz, double fallback) const {
+  const std::int64_t i[3] = {ix, iy, iz};
+  for (int a = 0; a < 3; ++a)
+    if (i[a] / B >= bricks_[a]) return fallback;
+  const std::int32_t brick = brick_of_[static_cast<std::size_t>(((iz / B) * bricks_[1] + iy / B) * bricks_[0] + ix / B)];
+  if (brick < 0) return fallback;
+  return nodes_[static_cast<std::size_t>(brick) * kNodes + static_cast<std::size_t>(((iz % B) * N + iy % B) * N + ix % B)]
+      .d_eff;
+}
+
+
+// The stencil: W and grad_y W(y - x) = -6 coef (h^2 - r^2)^2 (y - x) averaged over each cell
+// (8^3 points), since W changes much across a cell near the edge of its support. Returns
+// the sum of the weights.
+double SolidMap::make_taps(const Kernels& kernels, std::vector<Tap>& taps) const {
+  const double c = cell_, h = kernels.h, h2 = h * h, coef = kernels.poly6_coef;
+  const int R = static_cast<int>(std::ceil(h / c)) + 1;
+  constexpr int Q = 8;
+  double S = 0;
+  taps.clear();
+  for (int z = -R; z <= R; ++z)
+    for (int y = -R; y <= R; ++y)
+      for (int x = -R; x <= R; ++x) {
+        Tap t{{x, y, z}, 0, {0, 0, 0}};
+        for (int q = 0; q < Q * Q * Q; ++q) {
+          const double o[3] = {c * (x + (q % Q + 0.5) / Q - 0.5), c * (y + (q / Q % Q + 0.5) / Q - 0.5),
+                               c * (z + (q / (Q * Q) + 0.5) / Q - 0.5)};
+          const double r2 = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
+          if (r2 >= h2) continue;
+          const double u = h2 - r2;
+          t.w += coef * u * u * u / (Q * Q * Q);
+          for (int a = 0; a < 3; ++a) t.g[a] -= 6 * coef * u * u * o[a] / (Q * Q * Q);
+        }
+        if (t.w == 0) continue;
+        S += t.w;
+        taps.push_back(t);
+      }
+  return S;
+}
+
+// The wall fraction F at the nodes of one brick that lie where a particle can feel the wall,
+// stored as the distance at which a flat wall gives the same fraction (the header says why).
+void SolidMap::convolve(std::size_t brick, const std::vector<Tap>& taps, double S, double h) {
+  const double c = cell_, delta = wall_->delta();
+  const int R = static_cast<int>(std::ceil(h / c)) + 1;  // a cell reaches half a cell beyond its node
+  const int L = N + 2 * R;  // the block of nodes the brick's stencils read
+  const std::int64_t* corner = &corner_[3 * brick];
+  // The shares of every cell the brick's stencils read; a brick whose block is all fluid or
+  // all wall keeps d_eff = d (F is then 0, or f_plane(d) wherever it matters).
+  std::vector<std::array<float, 4>> block(static_cast<std::size_t>(L) * L * L);
+  // Brick and place in it of each block coordinate along each axis (-1: beyond the map).
+  std::vector<std::int64_t> brick_along[3], local_along[3];
+  for (int a = 0; a < 3; ++a)
+    for (int x = 0; x < L; ++x) {
+      const std::int64_t i = corner[a] + x - R;
+      const bool inside = i >= 0 && i / B < bricks_[a];
+      brick_along[a].push_back(inside ? i / B : -1);
+      local_along[a].push_back(inside ? i % B : 0);
+    }
+  bool mixed = false;
+  for (int z = 0; z < L; ++z)
+    for (int y = 0; y < L; ++y)
+      for (int x = 0; x < L; ++x) {
+        auto& b = block[(static_cast<std::size_t>(z) * L + y) * L + x];
+        const std::int64_t bx = brick_along[0][x], by = brick_along[1][y], bz = brick_along[2][z];
+        const std::int32_t brick =
+            bx < 0 || by < 0 || bz < 0 ? kFluid : brick_of_[static_cast<std::size_t>((bz * bricks_[1] + by) * bricks_[0] + bx)];
+        if (brick < 0) {
+          b = {brick == kWall ? 1.0f : 0.0f, 0, 0, 0};
+        } else {
+          b = occupancy_[static_cast<std::size_t>(brick) * kNodes +
+                         static_cast<std::size_t>((local_along[2][z] * N + local_along[1][y]) * N + local_along[0][x])];
+        }
+        mixed = mixed || b[0] != block[0][0] || b[0] * (1 - b[0]) != 0;
+      }
+
+  for (int n = 0; n < kNodes; ++n) {
+    Node& out = nodes_[brick * kNodes + n];
+    out.d_eff = out.d;
+    // Nodes on the brick's upper faces belong to the next brick (copied in build()).
+    if (n % N == B || n / N % N == B || n / (N * N) == B) continue;
+    if (!mixed || out.d < -2 * c - std::abs(delta) || out.d > h + c + std::abs(delta)) continue;
+    const std::size_t centre = (static_cast<std::size_t>(n / (N * N) + R) * L + (n / N % N + R)) * L + (n % N + R);
+    // Each cell's share times the kernel, to first order in where the share lies within the
+    // cell: occ W(y_k) + m . grad_y W(y_k), with m the share's first moment.
+    double F = 0;
+    for (const Tap& t : taps) {
+      const float* wall = block[centre + static_cast<std::ptrdiff_t>((t.k[2] * L + t.k[1]) * L + t.k[0])].data();
+      if (wall[0] == 0) continue;  // a fluid cell (its moment is zero too)
+      F += wall[0] * t.w + wall[1] * t.g[0] + wall[2] * t.g[1] + wall[3] * t.g[2];
+    }
+    F /= S;
+    if (F <= 0) continue;  // beyond the wall's reach: d itself continues the field
+    // The flat-wall fraction falls monotonically with the distance: bisect for the one that gives F.
+    double lo = -h - delta, hi = h - delta;
+    for (int it = 0; it < 40; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      real slope;
+      (wall_->fraction_both_sides(real(mid), slope) > F ? lo : hi) = mid;
+    }
+    out.d_eff = float(0.5 * (lo + hi));
+  }
+}
+
+std::int32_t SolidMap::brick_at(real x, real y, real z, std::size_t& base, real t[3]) const {
+  const real p[3] = {x, y, z};
+  std::int64_t i[3];
+  for (int a = 0; a < 3; ++a) {
+    const real f = (p[a] - origin_r_[a]) * inv_cell_;
+    if (!(f >= 0 && f < real(bricks_[a] * B))) return kFluid;  // beyond the map: beyond the domain
+    i[a] = static_cast<std::int64_t>(f);
+    t[a] = f - real(i[a]);
+  }
+  const std::int32_t brick = brick_of_[static_cast<std::size_t>(
+      ((i[2] / B) * bricks_[1] + i[1] / B) * bricks_[0] + i[0] / B)];
+  if (brick >= 0)
+    base = static_cast<std::size_t>(brick) * kNodes + static_cast<std::size_t>(((i[2] % B) * N + i[1] % B) * N + i[0] % B);
+  return brick;
+}
+
+// Trilinear interpolation of one member of the cell's eight nodes (`v` points at the first
+// node's), and its gradient.
+void SolidMap::interpolate(const float* v, const real t[3], real& value, real grad[3]) const {
+  constexpr std::size_t stride = sizeof(Node) / sizeof(float);
+  auto at = [&](std::size_t node) { return real(v[node * stride]); };
+  constexpr std::size_t sx = 1, sy = N, sz = N * N;
+  const real v000 = at(0), v100 = at(sx), v010 = at(sy), v110 = at(sx + sy), v001 = at(sz), v101 = at(sx + sz),
+             v011 = at(sy + sz), v111 = at(sx + sy + sz);
+  const real tx = t[0], ty = t[1], tz = t[2];
+  // Along x first, then y, then z; the gradient from the same corners.
+  const real a00 = v000 + tx * (v100 - v000), a10 = v010 + tx * (v110 - v010), a01 = v001 + tx * (v101 - v001),
+             a11 = v011 + tx * (v111 - v011);
+  const real b0 = a00 + ty * (a10 - a00), b1 = a01 + ty * (a11 - a01);
+  value = b0 + tz * (b1 - b0);
+  const real gx0 = (v100 - v000) + ty * ((v110 - v010) - (v100 - v000)),
+             gx1 = (v101 - v001) + ty * ((v111 - v011) - (v101 - v001));
+  grad[0] = (gx0 + tz * (gx1 - gx0)) * inv_cell_;
+  grad[1] = ((a10 - a00) + tz * ((a11 - a01) - (a10 - a00))) * inv_cell_;
+  grad[2] = (b1 - b0) * inv_cell_;
+}
+
+SolidMap::Where SolidMap::distance(real x, real y, real z, real& d, real grad[3]) const {
+  std::size_t base;
+  real t[3];
+  const std::int32_t brick = brick_at(x, y, z, base, t);
+  if (brick < 0) return brick == kFluid ? Where::fluid : Where::wall;
+  interpolate(&nodes_[base].d, t, d, grad);
+  return Where::near;
+}
+
+SolidMap::Where SolidMap::fraction(real x, real y, real z, real& f, real grad[3]) const {
+  std::size_t base;
+  real t[3];
+  const std::int32_t brick = brick_at(x, y, z, base, t);
+  if (brick < 0) {
+    f = brick == kFluid ? 0 : 1;
+    grad[0] = grad[1] = grad[2] = 0;
+    return brick == kFluid ? Where::fluid : Where::wall;
+  }
+  real d_eff, slope;
+  interpolate(&nodes_[base].d_eff, t, d_eff, grad);
+  f = wall_->fraction_both_sides(d_eff, slope);
+  for (int a = 0; a < 3; ++a) grad[a] *= slope;
+  return Where::near;
+}
+
+}  // namespace pbf

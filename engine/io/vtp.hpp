@@ -1,0 +1,15 @@
+#pragma once
+// A solid's surface as a VTK XML PolyData file (.vtp): the vertices as Points and each
+// triangle as a polygon (Polys: connectivity and offsets), in the appended binary layout of
+// the particle frames (engine/io/vtk_appended.hpp), so ParaView shows solids beside them.
+#include <string>
+
+#include "engine/geometry/triangle_mesh.hpp"
+
+namespace pbf {
+
+// Writes `mesh` to `path` (through PATH.tmp and a rename). Throws pbf::Error naming the path
+// if a triangle names a vertex the mesh does not have, or if the file cannot be written.
+void write_vtp(const std::string& path, const TriangleMesh& mesh);
+
+}  // namespace pbf

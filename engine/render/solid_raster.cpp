@@ -1,0 +1,168 @@
+#include "engine/render/solid_raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pbf::render {
+
+namespace {
+
+constexpr double kGuardBand = 4;  // pixels the clipped view reaches beyond the scene area
+
+// A plane of camera space, f(p) = n.p + d; the side f >= 0 is kept.
+struct Plane {
+  Vec3 n;
+  double d;
+  double operator()(const Vec3& p) const { return dot(n, p) + d; }
+};
+
+// Sutherland-Hodgman: the part of the convex polygon in[0..count) on the kept side, into out
+// (room for count + 1 corners); returns its corner count. A crossing edge's new corner is
+// interpolated from its inside end, so the two triangles sharing an edge get the same point.
+int clip(const Vec3* in, int count, const Plane& plane, Vec3* out) {
+  int kept = 0;
+  for (int k = 0; k < count; ++k) {
+    const Vec3 &p = in[k], &q = in[(k + 1) % count];
+    const double fp = plane(p), fq = plane(q);
+    if (fp >= 0) out[kept++] = p;
+    if ((fp >= 0) != (fq >= 0)) {
+      const Vec3 &inside = fp >= 0 ? p : q, &outside = fp >= 0 ? q : p;
+      const double f_in = fp >= 0 ? fp : fq, f_out = fp >= 0 ? fq : fp;
+      const double s = f_in / (f_in - f_out);
+      out[kept++] = {inside[0] + s * (outside[0] - inside[0]), inside[1] + s * (outside[1] - inside[1]),
+                     inside[2] + s * (outside[2] - inside[2])};
+    }
+  }
+  return kept;
+}
+
+ScreenPolygon project_triangle(const Camera& cam, const TriangleMesh& mesh, std::size_t t, bool container, int width,
+                               int height) {
+  ScreenPolygon poly;
+  const auto& tri = mesh.triangles[t];
+  const Vec3 &v0 = mesh.vertices[tri[0]], &v1 = mesh.vertices[tri[1]], &v2 = mesh.vertices[tri[2]];
+  // The outward normal and the side the camera sees: d > 0 when the normal points away.
+  const Vec3 normal = cross(sub(v1, v0), sub(v2, v0));
+  if (!finite(normal) || normal == Vec3{0, 0, 0}) return poly;
+  const Vec3 n = unit(normal);
+  const Vec3 nc{dot(n, cam.right), dot(n, cam.up), dot(n, cam.forward)};  // in camera axes
+  Vec3 corners[2][ScreenPolygon::kMaxCorners + 1] = {{cam.to_camera(v0), cam.to_camera(v1), cam.to_camera(v2)}, {}};
+  const double d = dot(nc, corners[0][0]);
+  if (!std::isfinite(d) || d == 0 || (d > 0) != container) return poly;
+
+  // Clip to the view: the near plane first (so that the side planes see positive depths).
+  const double G = kGuardBand;
+  const Plane planes[5] = {{{0, 0, 1}, -cam.near},
+                           {{cam.focal, 0, cam.cx + G}, 0},
+                           {{-cam.focal, 0, width + G - cam.cx}, 0},
+                           {{0, -cam.focal, cam.cy + G}, 0},
+                           {{0, cam.focal, height + G - cam.cy}, 0}};
+  int count = 3, from = 0;
+  for (const Plane& plane : planes) {
+    for (int k = 0; k < count; ++k)
+      if (!finite(corners[from][k])) return poly;
+    count = clip(corners[from], count, plane, corners[1 - from]);
+    from = 1 - from;
+    if (count < 3) return poly;
+  }
+
+  double area = 0;
+  for (int k = 0; k < count; ++k) {
+    const Vec3& c = corners[from][k];
+    poly.x[k] = static_cast<float>(cam.screen_x(c));
+    poly.y[k] = static_cast<float>(cam.screen_y(c));
+    if (!std::isfinite(poly.x[k]) || !std::isfinite(poly.y[k])) return poly;
+  }
+  for (int k = 0; k < count; ++k) {
+    const int j = (k + 1) % count;
+    area += double(poly.x[k]) * poly.y[j] - double(poly.x[j]) * poly.y[k];
+  }
+  if (!(area != 0) || !std::isfinite(area)) return poly;  // seen edge-on
+  if (area < 0) {
+    std::reverse(poly.x, poly.x + count);
+    std::reverse(poly.y, poly.y + count);
+  }
+
+  // 1/depth along the ray through screen point (x, y) is (nc . ray) / d, ray = ((x - cx) / focal,
+  // -(y - cy) / focal, 1) in camera axes: an affine function of x and y.
+  poly.a = nc[0] / (cam.focal * d);
+  poly.b = -nc[1] / (cam.focal * d);
+  poly.c = nc[2] / d - poly.a * cam.cx - poly.b * cam.cy;
+  if (!std::isfinite(poly.a) || !std::isfinite(poly.b) || !std::isfinite(poly.c)) return poly;
+
+  // Flat Lambert shading with the normal of the side seen, in the light's axes (z toward the viewer).
+  const double toward = d > 0 ? -1 : 1;
+  const float* L = SphereShading::light;
+  const float lambert = std::max(0.0f, static_cast<float>(toward * (L[0] * nc[0] + L[1] * nc[1] - L[2] * nc[2])));
+  const float lit = SolidShading::grey * (SphereShading::ambient + SphereShading::diffuse * lambert);
+  const auto grey = static_cast<unsigned char>(std::min(255.0f, lit + 0.5f));
+  poly.colour = {grey, grey, grey};
+
+  poly.x_lo = *std::min_element(poly.x, poly.x + count), poly.x_hi = *std::max_element(poly.x, poly.x + count);
+  poly.y_lo = *std::min_element(poly.y, poly.y + count), poly.y_hi = *std::max_element(poly.y, poly.y + count);
+  poly.corners = count;
+  return poly;
+}
+
+}  // namespace
+
+std::vector<ScreenPolygon> project_solids(const Camera& cam, const std::vector<SolidSurface>& solids, int width,
+                                          int height) {
+  std::size_t total = 0;
+  for (const auto& s : solids) total += s.mesh->triangles.size();
+  std::vector<ScreenPolygon> polygons(total);
+  std::size_t offset = 0;
+  for (const auto& s : solids) {
+    const std::size_t m = s.mesh->triangles.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t t = 0; t < m; ++t)
+      polygons[offset + t] = project_triangle(cam, *s.mesh, t, s.container, width, height);
+    offset += m;
+  }
+  return polygons;
+}
+
+void rasterize(const ScreenPolygon& p, int x0, int y0, int x1, int y1, float* zbuf, std::uint32_t* owner,
+               std::uint32_t id) {
+  // The pixels whose centres (q + 0.5) may lie inside, within [x0, x1) x [y0, y1).
+  auto first = [](float lo, int begin, int end) {
+    return int(std::clamp(std::ceil(lo - 0.5f), float(begin), float(end)));
+  };
+  auto last = [](float hi, int begin, int end) {
+    return int(std::clamp(std::floor(hi - 0.5f), float(begin - 1), float(end - 1)));
+  };
+  const int col0 = first(p.x_lo, x0, x1), col1 = last(p.x_hi, x0, x1);
+  const int row0 = first(p.y_lo, y0, y1), row1 = last(p.y_hi, y0, y1);
+  if (col0 > col1 || row0 > row1) return;
+
+  // Each edge from its endpoint lower in (y, x), with the sign that makes the inside positive:
+  // the neighbour across the edge evaluates the same expression with the other sign.
+  struct Edge {
+    double ax, ay, dx, dy, sign;
+  } edges[ScreenPolygon::kMaxCorners];
+  for (int k = 0; k < p.corners; ++k) {
+    const int j = (k + 1) % p.corners;
+    const bool swap = p.y[j] < p.y[k] || (p.y[j] == p.y[k] && p.x[j] < p.x[k]);
+    const int a = swap ? j : k, b = swap ? k : j;
+    edges[k] = {p.x[a], p.y[a], double(p.x[b]) - p.x[a], double(p.y[b]) - p.y[a], swap ? -1.0 : 1.0};
+  }
+  for (int py = row0; py <= row1; ++py) {
+    const double qy = py + 0.5;
+    for (int px = col0; px <= col1; ++px) {
+      const double qx = px + 0.5;
+      bool inside = true;
+      for (int k = 0; k < p.corners && inside; ++k) {
+        const Edge& e = edges[k];
+        inside = e.sign * (e.dx * (qy - e.ay) - e.dy * (qx - e.ax)) >= 0;
+      }
+      if (!inside) continue;
+      const double inverse_depth = p.a * qx + p.b * qy + p.c;
+      if (!(inverse_depth > 0)) continue;
+      const float depth = static_cast<float>(1 / inverse_depth);
+      const int k = (py - y0) * kTile + (px - x0);
+      if (depth < zbuf[k]) zbuf[k] = depth, owner[k] = id;
+    }
+  }
+}
+
+}  // namespace pbf::render

@@ -1,0 +1,35 @@
+#include "engine/sph/wall_density.hpp"
+
+#include <cmath>
+
+#include "engine/core/simulation.hpp"
+#include "engine/sph/mass.hpp"
+
+namespace pbf {
+
+bool HalfSpaceWall::prepare(const Simulation& sim) {
+  const auto& P = sim.particles();
+  if (P.size() == 0) return false;
+  const double mass = P.mean_mass();
+  if (mass == prepared_[0] && sim.kernel_radius() == prepared_[1] && sim.rest_density() == prepared_[2]) return false;
+  prepared_[0] = mass;
+  prepared_[1] = sim.kernel_radius();
+  prepared_[2] = sim.rest_density();
+  h_ = sim.kernels().h;
+  h2_ = h_ * h_;
+  scale_ = real(M_PI) * sim.kernels().poly6_coef / 4;
+  const double spacing = lattice_spacing(mass, sim.kernels(), sim.rest_density());
+  const double missing = lattice_wall_density(mass, sim.kernels(), sim.rest_density()) / sim.rest_density();
+  // f falls with the distance: bisect for the delta at which the first layer misses `missing`.
+  double lo = -0.5 * spacing, hi = sim.kernel_radius();
+  delta_ = 0;
+  for (int it = 0; it < 100; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    real slope;
+    (fraction(real(0.5 * spacing + mid), slope) > missing ? lo : hi) = mid;  // with delta_ = 0
+  }
+  delta_ = real(0.5 * (lo + hi));
+  return true;
+}
+
+}  // namespace pbf
