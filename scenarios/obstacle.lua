@@ -1,8 +1,9 @@
 -- obstacle.lua: a dam break against an obstacle read from a mesh file. A water column 0.3 m
 -- wide, 0.5 m high and as deep as the tank is released against the wall x = 0 of a tank
--- 1.2 m long; the surge meets a ramp (scenarios/geometry/wedge.stl, a binary STL: 0.16 m
--- long, 0.12 m high, 0.2 m wide, its slope facing the flow) in the middle of the floor, is
--- thrown up over it and around it, and splashes against the far wall. The tank's walls are
+-- 1.2 m long; the surge meets a ramp (scenarios/geometry/wedge.stl, a binary STL, scaled to
+-- 0.24 m long, 0.3 m high and 0.2 m wide, its slope facing the flow) in the middle of the
+-- floor, is thrown up its slope and flows around its sides, and splashes against the far
+-- wall. The tank's walls are
 -- the analytic box; the ramp is a `solid` (docs/user-guide.md#solids).
 --
 --   pbfengine run scenarios/obstacle.lua [-v particles=20000] [-v t_end=1.0] [-v out=out]
@@ -43,10 +44,10 @@ else
 end
 pbf.fix("walls", "box", {})
 -- The ramp, its slope towards the column, in the middle of the tank's floor and width.
-pbf.fix("ramp", "solid", {file = here .. "geometry/wedge.stl", translate = {0.6, 0.1, 0},
+pbf.fix("ramp", "solid", {file = here .. "geometry/wedge.stl", scale = {1.5, 1, 2.5}, translate = {0.6, 0.1, 0},
                           friction = var.friction or 0})
 
-require("outputs").add(out, {color = "speed", min = 0, max = 3, direction = {0.6, 1.6, -0.9}})
+require("outputs").add(out, {color = "speed", min = 0, max = 3, direction = {0.5, 1.6, -1.5}})
 pbf.compute("v", "speed")
 pbf.compute("box", "extent")
 pbf.thermo{every = math.max(1, math.floor(0.05 / dt)), columns = {"step", "time", "v.avg", "v.max", "box.xmax", "box.zmax"}}

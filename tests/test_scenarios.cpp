@@ -110,6 +110,26 @@ TEST(Determinism, SameBitsAtOneAndTwoThreads) {
   EXPECT_GE(compared, 6);  // five frames and the thermo CSV
 }
 
+// The obstacle scene (a ramp read from an STL file) runs through the surge's impact on the
+// ramp (at about t = 0.2 s; a particle found inside the ramp would stop the run), and its
+// ParaView frames (particles and the ramp's surface) are the same bytes at 1 and 2 threads.
+TEST(Obstacle, SurgeMeetsTheRampSameBitsAtOneAndTwoThreads) {
+  const auto dir = pbf::test::temp_dir("obstacle");
+  for (int t : {1, 2}) {
+    auto r = run_engine("run " + scenario("obstacle.lua") + " -v particles=3000 -v t_end=0.3 -v vtk=0.1 " +
+                        "--threads " + std::to_string(t) + " -v out=" + (dir / std::to_string(t)).string());
+    ASSERT_EQ(r.code, 0) << r.output;
+  }
+  int compared = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "1" / "vtk")) {
+    const auto other = dir / "2" / "vtk" / e.path().filename();
+    ASSERT_TRUE(std::filesystem::exists(other)) << other;
+    EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(other)) << e.path().filename();
+    ++compared;
+  }
+  EXPECT_GE(compared, 6);  // four particle frames, the ramp's surface, the collection
+}
+
 TEST(InitFile, RunsASceneFromTheGeneratorAtItsOutputInterval) {
   // The original study's workflow: write a scene file with share/make_scene.py, run it
   // with the standard pipeline, get one frame per output interval from t = 0 to the end.

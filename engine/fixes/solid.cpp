@@ -141,13 +141,18 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     real *x = P.x(), *y = P.y(), *z = P.z();
     const std::size_t n = P.size();
     std::size_t lost = n;
+    // A solid touching a face of the domain (a ramp on the floor) may push a particle at its
+    // foot across that face; the domain stays the hard limit.
+    const Domain& dom = sim.domain();
+    const real lo[3] = {real(dom.lo[0]), real(dom.lo[1]), real(dom.lo[2])};
+    const real hi[3] = {real(dom.hi[0]), real(dom.hi[1]), real(dom.hi[2])};
 #pragma omp parallel for schedule(static) reduction(min : lost)
     for (std::size_t i = 0; i < n; ++i) {
       real p[3] = {x[i], y[i], z[i]};
       if (!keep_out(i, p)) lost = std::min(lost, i);
-      x[i] = p[0];
-      y[i] = p[1];
-      z[i] = p[2];
+      x[i] = std::clamp(p[0], lo[0], hi[0]);
+      y[i] = std::clamp(p[1], lo[1], hi[1]);
+      z[i] = std::clamp(p[2], lo[2], hi[2]);
     }
     if (lost < n)
       throw Error(fmt::format("particle {} at ({}, {}, {}) went through solid '{}' at step {}", P.ids()[lost], x[lost],
