@@ -403,3 +403,45 @@ TEST(Restart, CtrlCWritesARestartAndExitsWith130) {
 }
 
 }  // namespace
+
+// A run with a solid read from a mesh file continues bit for bit from a restart; a restart
+// whose mesh file has changed since is refused, naming the file.
+TEST(Restart, ARunWithASolidContinuesAndAChangedMeshIsRefused) {
+  const auto dir = temp_dir("restart-solid");
+  std::filesystem::copy_file(scenario("geometry/wedge.stl"), dir / "ramp.stl");
+  write_file(dir / "ramp.lua", R"(
+if var.restart then pbf.read_restart(var.restart) else
+  pbf.domain{lo = {0, 0, 0}, hi = {0.4, 0.2, 0.3}}
+  pbf.kernel_radius(0.02)
+  pbf.timestep(0.002)
+  pbf.lattice{lo = {0, 0, 0}, hi = {0.1, 0.2, 0.2}, spacing = 0.01}
+end
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.fix("ramp", "solid", {file = var.mesh, translate = {0.2, 0, 0}})
+pbf.fix("restarts", "restart", {path = var.out .. "/r.*.restart", every = 30, keep = 5})
+pbf.run(90 - pbf.step())
+pbf.write_restart(var.final)
+)");
+  auto args = [&](const std::string& final) {
+    return fmt::format("run {} -v mesh={} -v out={} -v final={}", (dir / "ramp.lua").string(),
+                       (dir / "ramp.stl").string(), (dir / "out").string(), (dir / final).string());
+  };
+  auto straight = run_engine(args("straight.final"));
+  ASSERT_EQ(straight.code, 0) << straight.output;
+  const auto half = dir / "half.restart";
+  std::filesystem::copy_file(dir / "out" / "r.30.restart", half);
+  auto continued = run_engine(args("continued.final") + " -v restart=" + half.string());
+  ASSERT_EQ(continued.code, 0) << continued.output;
+  EXPECT_EQ(continued.output.find("warning"), std::string::npos) << continued.output;
+  EXPECT_TRUE(read_file(dir / "straight.final") == read_file(dir / "continued.final"));
+
+  std::string mesh = read_file(dir / "ramp.stl");
+  mesh[0] = 'W';  // the header's first byte: the same geometry, other contents
+  write_file(dir / "ramp.stl", mesh);
+  auto changed = run_engine(args("changed.final") + " -v restart=" + half.string());
+  EXPECT_EQ(changed.code, 1);
+  EXPECT_NE(changed.output.find("ramp.stl' has changed since the restart was written"), std::string::npos)
+      << changed.output;
+}

@@ -15,6 +15,7 @@
 // in the log.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -22,6 +23,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/io/bytes.hpp"
 #include "engine/geometry/mesh_file.hpp"
 #include "engine/geometry/mesh_sdf.hpp"
 #include "engine/geometry/primitives.hpp"
@@ -36,6 +38,18 @@ namespace pbf {
 namespace {
 
 double norm(const Point& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// FNV-1a of a file's bytes (0 when it cannot be read: the mesh reader then says why).
+std::uint64_t hash_of_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::uint64_t hash = 14695981039346656037ull;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize k = 0; k < in.gcount(); ++k) hash = (hash ^ static_cast<unsigned char>(buffer[k])) * 1099511628211ull;
+    if (!in) break;
+  }
+  return hash;
+}
 
 class Solid : public Fix, public DensityBoundary, public SolidBody {
  public:
@@ -53,6 +67,9 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       placement_.translate[a] = translate[a];
     }
     describe_shape(p);
+    std::string given;
+    for (const auto& [name, value] : p.values()) given += (given.empty() ? "" : ", ") + name + " = " + format_value(value);
+    description_ = given;
   }
 
   std::vector<Stage> stages() const override {
@@ -64,6 +81,26 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   const std::string& name() const override { return id(); }
   const TriangleMesh& surface() const override { return surface_; }
   bool fluid_inside() const override { return fluid_inside_; }
+
+  // What the solid was made of, so a continued run can tell that it is the same solid: the
+  // mesh file's name and a hash of its bytes, and the description of shape and placement.
+  void save_state(ByteWriter& w) const override {
+    w.put_string(description_);
+    w.put_string(file_);
+    w.put<std::uint64_t>(file_hash_);
+  }
+
+  void restore_state(ByteReader& r) override {
+    const std::string description = r.get_string(), file = r.get_string();
+    const auto hash = r.get<std::uint64_t>();
+    if (!file.empty() && file == file_ && hash != file_hash_)
+      throw Error(fmt::format("solid '{}': mesh file '{}' has changed since the restart was written (its contents "
+                              "differ): the continued run would not see the saved run's wall",
+                              id(), file_));
+    if (description != description_)
+      spdlog::warn("solid '{}' is not the restart's ({}; now {}): the run continues with the new one", id(),
+                   description, description_);
+  }
 
   void prepare_scene(Simulation& sim) override {
     prepare(sim);
@@ -262,7 +299,9 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     auto point = [](const Vec3& v) { return Point{v[0], v[1], v[2]}; };
     if (shape_name_ == "mesh") {
       if (!p.has("file")) throw Error("shape 'mesh' needs the parameter 'file' (an OBJ or STL file)");
-      TriangleMesh mesh = read_mesh_file(p.string("file"));
+      file_ = p.string("file");
+      TriangleMesh mesh = read_mesh_file(file_);  // first: it refuses what is no mesh file (a device, a directory)
+      file_hash_ = hash_of_file(file_);
       check_closed(mesh, fmt::format("mesh file '{}'", p.string("file")));
       orient_outward(mesh);
       place(mesh, placement_);
@@ -347,7 +386,9 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
                               id(), 2 * depth + cell_size(), spacing));
   }
 
-  std::string shape_name_;
+  std::string shape_name_, description_;
+  std::string file_;             // the mesh file ("" for a primitive)
+  std::uint64_t file_hash_ = 0;  // FNV-1a of its bytes
   bool fluid_inside_;
   double friction_;
   bool no_slip_, wall_density_;
