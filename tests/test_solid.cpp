@@ -1,7 +1,8 @@
 // Solids of any shape: the wall density a solid adds is the analytic box's on flat walls and
 // the kernel's integral over the wall at corners; a fast jet does not get through a wall one
-// spacing thick (both solvers); fluid created inside a solid is left out; bad solids are
-// refused with their name.
+// spacing thick (both solvers); fluid created inside a solid is left out; a column at rest
+// presses on its container with its weight (both solvers); bad solids are refused with their
+// name.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "engine/core/simulation.hpp"
 #include "engine/registry/style_registry.hpp"
 #include "engine/sph/lattice.hpp"
+#include "test_util.hpp"
 
 using namespace pbf;
 
@@ -198,4 +200,57 @@ TEST(Solid, RefusesParametersOfAnotherShape) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'radius' does not apply to shape 'box'"), std::string::npos) << e.what();
   }
+}
+
+// A column at rest in a solid container pushes on it with its weight: the load's z component,
+// averaged over 1 s after a settling second, is -M g within 2%, and the sideways forces
+// cancel (within 2% of the weight), for both solvers.
+class ColumnLoad : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ColumnLoad, IsTheColumnsWeight) {
+  Simulation sim;
+  sim.set_domain(Domain{{0, 0, 0}, {0.1, 0.1, 0.3}});
+  sim.set_kernel_radius(0.02);
+  sim.set_timestep(0.004);
+  const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.1, 0.15}, v[3] = {0, 0, 0};
+  add_lattice(sim, lo, hi, 0.01, v);
+  sim.add_fix(fix("gravity", "gravity"));
+  sim.add_fix(fix("tank", "solid", {{"shape", std::string("box")}, {"fluid", std::string("inside")},
+                                    {"lo", Vec3{0, 0, 0}}, {"hi", Vec3{0.1, 0.1, 0.3}}}));
+  if (GetParam() == "pbf") {
+    sim.add_fix(fix("pbf", "pbf"));
+  } else {
+    sim.add_fix(fix("integrator", "leapfrog"));
+    sim.add_fix(fix("wcsph", "wcsph"));
+    sim.add_fix(fix("viscosity", "sph_viscosity"));
+    sim.add_fix(fix("cfl", "cfl"));
+  }
+  sim.add_compute(StyleRegistry::builtin().make_compute("f", "load", {{"solid", std::string("tank")}}));
+  double weight = 0;
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) weight += sim.particles().mass()[i] * 9.81;
+  sim.run_until(1.0);
+  double impulse[3] = {0, 0, 0}, time = 0;
+  std::vector<double> f;
+  while (sim.time() < 2.0 - 1e-9) {
+    sim.run(1);
+    sim.find_compute("f")->evaluate(sim, f);
+    for (int a = 0; a < 3; ++a) impulse[a] += f[a] * sim.timestep();
+    time += sim.timestep();
+  }
+  EXPECT_NEAR(impulse[2] / time / -weight, 1.0, 0.02);
+  EXPECT_NEAR(impulse[0] / time / weight, 0.0, 0.02);
+  EXPECT_NEAR(impulse[1] / time / weight, 0.0, 0.02);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothSolvers, ColumnLoad, ::testing::Values("pbf", "wcsph"));
+
+TEST(Solid, ALoadOfAnUnknownSolidIsRefusedByName) {
+  Simulation sim;
+  const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.1, 0.1};
+  block(sim, lo, hi);
+  sim.add_fix(fix("tank", "solid", {{"shape", std::string("box")}, {"fluid", std::string("inside")},
+                                    {"lo", Vec3{0, 0, 0}}, {"hi", Vec3{0.4, 0.2, 0.2}}}));
+  sim.add_compute(StyleRegistry::builtin().make_compute("f", "load", {{"solid", std::string("tnak")}}));
+  std::vector<double> values;
+  EXPECT_ERROR_NAMING(sim.find_compute("f")->evaluate(sim, values), "'tnak'", "did you mean 'tank'");
 }

@@ -77,13 +77,14 @@ class PositionBasedFluid : public Fix {
     const real relax = real(epsilon_ * S0_);
     const real scorr_scale = real(k_ / S0_);
     const real inv_wdq = 1 / scorr_w_;
+    const real inv_dt = real(1 / sim.timestep());
     real *x = P.x(), *y = P.y(), *z = P.z();
     const real* m = P.mass();
     real* lambda = P.data(lambda_);
     const auto& walls = sim.density_boundaries();
     for (auto& c : dp_) c.resize(n);
-    if (!walls.empty())
-      for (auto& c : wall_grad_) c.resize(n);
+    wall_grad_.resize(3 * walls.size());
+    for (auto& c : wall_grad_) c.resize(n);
 
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -98,12 +99,13 @@ class PositionBasedFluid : public Fix {
         gi[2] += g * dz;
         sum_sq += g * g * r2;
       });
-      if (!walls.empty()) {  // kept for the correction pass: the positions do not change in between
+      // Each wall's gradient, kept for the correction pass (the positions do not change in between).
+      for (std::size_t b = 0; b < walls.size(); ++b) {
         real wall_grad[3] = {0, 0, 0};
-        for (const DensityBoundary* b : walls) b->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
+        walls[b]->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
         for (int c = 0; c < 3; ++c) {
           gi[c] += wall_grad[c] * inv_rho0;
-          wall_grad_[c][i] = wall_grad[c];
+          wall_grad_[3 * b + c][i] = wall_grad[c];
         }
       }
       real C = rho * inv_rho0 - 1;
@@ -128,8 +130,17 @@ class PositionBasedFluid : public Fix {
         d[1] += g * dy;
         d[2] += g * dz;
       });
-      if (!walls.empty())  // a wall's gradient moves only particle i (the wall has no lambda of its own)
-        for (int c = 0; c < 3; ++c) d[c] += lambda[i] * inv_rho0 * wall_grad_[c][i];
+      // A wall's gradient moves only particle i (the wall has no lambda of its own); the wall
+      // takes the opposite momentum, m dx / dt.
+      for (std::size_t b = 0; b < walls.size(); ++b) {
+        real push[3];
+        for (int c = 0; c < 3; ++c) {
+          const real move = lambda[i] * inv_rho0 * wall_grad_[3 * b + c][i];
+          d[c] += move;
+          push[c] = m[i] * move * inv_dt;
+        }
+        walls[b]->record_push(i, push);
+      }
       dpx[i] = d[0];
       dpy[i] = d[1];
       dpz[i] = d[2];
@@ -168,7 +179,7 @@ class PositionBasedFluid : public Fix {
   FieldId lambda_ = 0;
   std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
   std::vector<real> dp_[3];    // corrections of one iteration
-  std::vector<real> wall_grad_[3];  // the walls' density gradient at each particle, within an iteration
+  std::vector<std::vector<real>> wall_grad_;  // each wall's density gradient (3 arrays per wall), within an iteration
 };
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/geometry/mesh_file.hpp"
@@ -73,7 +74,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   }
 
   std::vector<Stage> stages() const override {
-    return {Stage::external_forces, Stage::constraints, Stage::velocity_update};
+    return {Stage::external_forces, Stage::constraints, Stage::velocity_update, Stage::end_of_step};
   }
   Role role() const override { return Role::boundary; }
   DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
@@ -81,6 +82,10 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   const std::string& name() const override { return id(); }
   const TriangleMesh& surface() const override { return surface_; }
   bool fluid_inside() const override { return fluid_inside_; }
+  std::array<double, 6> load() const override { return load_; }
+  void record_push(std::size_t i, const real momentum[3]) override {
+    for (int c = 0; c < 3; ++c) push_[c][i] += momentum[c];
+  }
 
   // What the solid was made of, so a continued run can tell that it is the same solid: the
   // mesh file's name and a hash of its bytes, and the description of shape and placement.
@@ -161,6 +166,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const auto& P = sim.particles();
     const std::size_t n = P.size();
     for (auto& s : start_) s.resize(n);
+    for (auto& s : push_) s.assign(n, 0);
     start_distance_.resize(n);
     const real *x = P.x(), *y = P.y(), *z = P.z();
 #pragma omp parallel for schedule(static)
@@ -183,13 +189,27 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const Domain& dom = sim.domain();
     const real lo[3] = {real(dom.lo[0]), real(dom.lo[1]), real(dom.lo[2])};
     const real hi[3] = {real(dom.hi[0]), real(dom.hi[1]), real(dom.hi[2])};
+    // Under an integrator of positions (pbf) a projection changes the velocity by dx / dt:
+    // the wall takes m dx / dt. (A leapfrog's velocities are corrected in velocity_update.)
+    const Fix* integrator = sim.integrator();
+    const bool moves_momentum = integrator && integrator->integration() == Integration::positions;
+    const real* m = P.mass();
+    const real inv_dt = real(1 / sim.timestep());
 #pragma omp parallel for schedule(static) reduction(min : lost)
     for (std::size_t i = 0; i < n; ++i) {
       real p[3] = {x[i], y[i], z[i]};
       if (!keep_out(i, p)) lost = std::min(lost, i);
-      x[i] = std::clamp(p[0], lo[0], hi[0]);
-      y[i] = std::clamp(p[1], lo[1], hi[1]);
-      z[i] = std::clamp(p[2], lo[2], hi[2]);
+      p[0] = std::clamp(p[0], lo[0], hi[0]);
+      p[1] = std::clamp(p[1], lo[1], hi[1]);
+      p[2] = std::clamp(p[2], lo[2], hi[2]);
+      if (moves_momentum) {
+        push_[0][i] += m[i] * (p[0] - x[i]) * inv_dt;
+        push_[1][i] += m[i] * (p[1] - y[i]) * inv_dt;
+        push_[2][i] += m[i] * (p[2] - z[i]) * inv_dt;
+      }
+      x[i] = p[0];
+      y[i] = p[1];
+      z[i] = p[2];
     }
     if (lost < n)
       throw Error(fmt::format("particle {} at ({}, {}, {}) went through solid '{}' at step {}", P.ids()[lost], x[lost],
@@ -201,6 +221,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const real *x = P.x(), *y = P.y(), *z = P.z();
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     const real keep = no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
+    const real* m = P.mass();
     const real touching = real(contact_tolerance());
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < P.size(); ++i) {
@@ -213,10 +234,31 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       if (vn > 0) vn = 0;  // leaving the wall: keep it
       const real v[3] = {vx[i] - vn * nrm[0], vy[i] - vn * nrm[1], vz[i] - vn * nrm[2]};
       const real vt = v[0] * nrm[0] + v[1] * nrm[1] + v[2] * nrm[2];  // >= 0: the normal part kept
-      vx[i] = vt * nrm[0] + keep * (v[0] - vt * nrm[0]);
-      vy[i] = vt * nrm[1] + keep * (v[1] - vt * nrm[1]);
-      vz[i] = vt * nrm[2] + keep * (v[2] - vt * nrm[2]);
+      const real after[3] = {vt * nrm[0] + keep * (v[0] - vt * nrm[0]), vt * nrm[1] + keep * (v[1] - vt * nrm[1]),
+                             vt * nrm[2] + keep * (v[2] - vt * nrm[2])};
+      push_[0][i] += m[i] * (after[0] - vx[i]);
+      push_[1][i] += m[i] * (after[1] - vy[i]);
+      push_[2][i] += m[i] * (after[2] - vz[i]);
+      vx[i] = after[0];
+      vy[i] = after[1];
+      vz[i] = after[2];
     }
+  }
+
+  // The load of this step: the opposite of the momentum the wall gave the fluid, over dt
+  // (deterministic sums), and its moment about the origin at the particles' positions.
+  void end_of_step(Simulation& sim) override {
+    const auto& P = sim.particles();
+    const real *x = P.x(), *y = P.y(), *z = P.z();
+    const real *px = push_[0].data(), *py = push_[1].data(), *pz = push_[2].data();
+    const double inv_dt = 1 / sim.timestep();
+    const std::size_t n = P.size();
+    load_[0] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(px[i]); });
+    load_[1] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(py[i]); });
+    load_[2] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(pz[i]); });
+    load_[3] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(y[i] * pz[i] - z[i] * py[i]); });
+    load_[4] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(z[i] * px[i] - x[i] * pz[i]); });
+    load_[5] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(x[i] * py[i] - y[i] * px[i]); });
   }
 
  private:
@@ -406,6 +448,8 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   double built_for_[7] = {0, 0, 0, 0, 0, 0, 0};
   double spacing_ = 0;
   std::vector<real> start_[3], start_distance_;
+  std::vector<real> push_[3];  // momentum the wall gave each particle in this step
+  std::array<double, 6> load_{};
 };
 
 }  // namespace

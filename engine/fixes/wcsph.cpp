@@ -129,11 +129,16 @@ class Wcsph : public Fix {
         a[1] += s * dy;
         a[2] += s * dz;
       });
-      if (!walls.empty() && pi != 0) {  // the walls as fluid mirrored at the same pressure
-        real wall_rho = 0, grad[3] = {0, 0, 0};
-        for (const DensityBoundary* w : walls) w->add_density(sim, x[i], y[i], z[i], wall_rho, grad);
-        for (int c = 0; c < 3; ++c) a[c] -= 2 * pi * grad[c];
-      }
+      if (pi != 0)  // each wall as fluid mirrored at the same pressure; it takes the opposite push
+        for (DensityBoundary* w : walls) {
+          real wall_rho = 0, grad[3] = {0, 0, 0}, push[3];
+          w->add_density(sim, x[i], y[i], z[i], wall_rho, grad);
+          for (int c = 0; c < 3; ++c) {
+            a[c] -= 2 * pi * grad[c];
+            push[c] = -2 * pi * grad[c] * m[i] * dt;
+          }
+          w->record_push(i, push);
+        }
       ax[i] += a[0];
       ay[i] += a[1];
       az[i] += a[2];

@@ -1,6 +1,7 @@
 #pragma once
 // What the outputs need to know of a solid: its name, its surface where it is now (world
 // coordinates) and which side of it the fluid is on. The `solid` fix implements it.
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -20,6 +21,9 @@ class SolidBody {
   virtual std::uint64_t surface_version() const { return 0; }
   // True for a container (fluid inside the surface), false for an obstacle.
   virtual bool fluid_inside() const = 0;
+  // What the fluid exerted on the solid, averaged over the last step: the force (N) and the
+  // torque about the origin (N m), {fx, fy, fz, tx, ty, tz}.
+  virtual std::array<double, 6> load() const { return {}; }
 };
 
 }  // namespace pbf

@@ -26,6 +26,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_compute_count(r);
   register_compute_extent(r);
   register_compute_front(r);
+  register_compute_load(r);
 }
 
 }  // namespace pbf

@@ -40,5 +40,6 @@ void register_compute_speed(StyleRegistry&);
 void register_compute_count(StyleRegistry&);
 void register_compute_extent(StyleRegistry&);
 void register_compute_front(StyleRegistry&);
+void register_compute_load(StyleRegistry&);
 
 }  // namespace pbf

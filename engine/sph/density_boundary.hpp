@@ -1,6 +1,8 @@
 #pragma once
 // Something besides fluid particles that adds to a particle's density (walls). The
 // density solver adds rho_b(x) to the SPH sum and its gradient to the constraint gradient.
+#include <cstddef>
+
 #include "engine/core/real.hpp"
 
 namespace pbf {
@@ -15,6 +17,10 @@ class DensityBoundary {
   virtual void prepare(const Simulation&) {}
   // Adds the boundary density at (x, y, z) to `rho` and its gradient to `grad`.
   virtual void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const = 0;
+  // The solver's term for this boundary gave particle i (memory index) the momentum
+  // `momentum` (kg m/s) in this step: a boundary that reports the load on itself adds it up
+  // (Newton's third law). Called from parallel loops, each index by one thread at a time.
+  virtual void record_push(std::size_t /*i*/, const real /*momentum*/[3]) {}
 };
 
 }  // namespace pbf
