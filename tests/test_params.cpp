@@ -88,12 +88,17 @@ TEST(Params, HelpListsEveryStyleAndEveryParameter) {
 }
 
 // A style's defaults must pass its own checks: a default outside its range would make the
-// style unusable without that parameter.
+// style unusable without that parameter. (A required parameter gets a plain value: a name.)
 TEST(Params, EveryDefaultIsInItsRange) {
   for (const auto& s : StyleRegistry::builtin().styles()) {
     GivenParams defaults;
-    for (const auto& p : s.params)
+    for (const auto& p : s.params) {
       if (p.default_value) defaults.emplace_back(p.name, *p.default_value);
+      if (!p.default_value && !p.optional) {
+        ASSERT_EQ(p.type, ParamType::String) << s.name << "." << p.name << ": give this test a value of its type";
+        defaults.emplace_back(p.name, std::string("name"));
+      }
+    }
     EXPECT_NO_THROW(Params(s.name, s.params, defaults)) << s.name;
   }
 }
