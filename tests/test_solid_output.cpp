@@ -27,14 +27,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// 64 particles in the middle of the unit box, a container around them ("tank", static) and
-// an obstacle ("paddle", moved by the tests); returns the paddle.
-TestSolid* scene(Simulation& sim) {
+// 64 particles in the middle of the unit box.
+void particles(Simulation& sim) {
   sim.set_domain(Domain{});
   sim.set_kernel_radius(0.1);
   sim.set_timestep(0.001);
   const double lo[3] = {0.4, 0.4, 0.4}, hi[3] = {0.6, 0.6, 0.6}, v[3] = {0, 0, 0};
   add_lattice(sim, lo, hi, 0.05, v);
+}
+
+// Those particles, a container around them ("tank", static) and an obstacle ("paddle", moved
+// by the tests); returns the paddle.
+TestSolid* scene(Simulation& sim) {
+  particles(sim);
   sim.add_fix(std::make_unique<TestSolid>("tank", box_mesh({0.1, 0.1, 0.1}, {0.9, 0.9, 0.9}), true));
   auto paddle = std::make_unique<TestSolid>("paddle", box_mesh({0.2, 0.2, 0.2}, {0.3, 0.3, 0.3}), false);
   TestSolid* p = paddle.get();
@@ -164,11 +169,7 @@ TEST(SolidOutput, AStateSavedWithoutSolidsStillReads) {
   // A dump's state from before solids ends after the frames; the solids' part of a state
   // with none is 8 bytes per frame and 16 more.
   Simulation sim;
-  sim.set_domain(Domain{});
-  sim.set_kernel_radius(0.1);
-  sim.set_timestep(0.001);
-  const double lo[3] = {0.4, 0.4, 0.4}, hi[3] = {0.6, 0.6, 0.6}, v[3] = {0, 0, 0};
-  add_lattice(sim, lo, hi, 0.05, v);
+  particles(sim);
   const auto dir = test::temp_dir("solid-old-state");
   add_vtk(sim, dir);
   sim.run(2);  // 3 frames
@@ -190,11 +191,7 @@ TEST(SolidOutput, ImagesDrawSolidsUnlessSwitchedOff) {
   const auto dir = test::temp_dir("solid-image");
   auto render = [&](bool with_solids, bool draw, const std::string& name) {
     Simulation sim;
-    sim.set_domain(Domain{});
-    sim.set_kernel_radius(0.1);
-    sim.set_timestep(0.001);
-    const double lo[3] = {0.4, 0.4, 0.4}, hi[3] = {0.6, 0.6, 0.6}, v[3] = {0, 0, 0};
-    add_lattice(sim, lo, hi, 0.05, v);
+    particles(sim);
     if (with_solids) sim.add_fix(std::make_unique<TestSolid>("tank", box_mesh({0.1, 0.1, 0.1}, {0.9, 0.9, 0.9}), true));
     sim.add_fix(StyleRegistry::builtin().make_fix("img", "dump/image",
                                                   {{"path", (dir / (name + "_*.png")).string()},
