@@ -5,6 +5,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "scripting/lua_motion.hpp"
+
 namespace pbf::lua {
 
 namespace {
@@ -167,6 +169,23 @@ Names string_list(lua_State* L, int index, const char* what) {
   return names;
 }
 
+Points point_list(lua_State* L, int index, const char* what) {
+  index = lua_absindex(L, index);
+  Points points;
+  const auto n = static_cast<lua_Integer>(lua_rawlen(L, index));
+  for (lua_Integer k = 1; k <= n; ++k) {
+    lua_rawgeti(L, index, k);
+    try {
+      points.push_back(vec3(L, -1, fmt::format("{}: point {}", what, k).c_str()));
+    } catch (...) {
+      lua_pop(L, 1);
+      throw;
+    }
+    lua_pop(L, 1);
+  }
+  return points;
+}
+
 ParamValue param_value(lua_State* L, int index, const std::string& name) {
   switch (lua_type(L, index)) {
     case LUA_TNUMBER:
@@ -174,11 +193,17 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
       return static_cast<double>(lua_tonumber(L, index));
     case LUA_TBOOLEAN: return lua_toboolean(L, index) != 0;
     case LUA_TSTRING: return string(L, index, fmt::format("parameter '{}'", name).c_str());
+    case LUA_TFUNCTION: return function_motion(L, index);
+    case LUA_TUSERDATA:
+      if (MotionPtr motion = motion_value(L, index)) return motion;
+      throw Error(fmt::format("parameter '{}': this userdata is no parameter value", name));
     case LUA_TTABLE: {
       lua_rawgeti(L, index, 1);
-      const bool names = lua_type(L, -1) == LUA_TSTRING || lua_type(L, -1) == LUA_TNIL;  // {} is no names
+      const int first = lua_type(L, -1);
       lua_pop(L, 1);
-      if (names) return string_list(L, index, fmt::format("parameter '{}'", name).c_str());
+      if (first == LUA_TSTRING || first == LUA_TNIL)  // {} is no names
+        return string_list(L, index, fmt::format("parameter '{}'", name).c_str());
+      if (first == LUA_TTABLE) return point_list(L, index, fmt::format("parameter '{}'", name).c_str());
       // The binding does not know the parameter's type: a table that is no {x, y, z} is
       // told both of what a table can be (the schema then says which one it wanted).
       if (lua_rawlen(L, index) != 3)
@@ -188,8 +213,9 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
       return vec3(L, index, fmt::format("parameter '{}'", name).c_str());
     }
     default:
-      throw Error(fmt::format("parameter '{}': a {} is not a parameter value (number, boolean, string or "
-                              "{{x, y, z}} or {{\"name\", ...}})", name, luaL_typename(L, index)));
+      throw Error(fmt::format("parameter '{}': a {} is not a parameter value (number, boolean, string, "
+                              "{{x, y, z}}, {{\"name\", ...}}, {{{{x, y, z}}, ...}} or a motion)",
+                              name, luaL_typename(L, index)));
   }
 }
 

@@ -13,6 +13,7 @@
 #include "engine/registry/style_registry.hpp"
 #include "scripting/log_file.hpp"
 #include "scripting/lua_callback.hpp"
+#include "scripting/lua_motion.hpp"
 #include "scripting/script_state.hpp"
 
 namespace pbf {
@@ -296,6 +297,7 @@ Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}, std:
       {"value", lua::guarded<l_value>},
       {"thermo", lua::guarded<l_thermo>},
       {"every", lua::guarded<l_every>},
+      {"keyframes", lua::guarded<lua::l_keyframes>},
       {"run", lua::guarded<l_run>},
       {"run_until", lua::guarded<l_run_until>},
       {"step", lua::guarded<l_step>},

@@ -2,7 +2,9 @@
 // run starts) it sets the next step's size to
 //   dt = min(max_dt, courant h / (c + |v|max), force sqrt(h / |a|max))
 // with h the kernel support radius, c the largest signal speed of the pipeline's fixes (the
-// wcsph sound speed) unless given, |a|max from the integrator's "acceleration" field. With
+// wcsph sound speed) unless given, |a|max from the integrator's "acceleration" field, and
+// |v|max the fastest particle or moving solid (over the step now set), so a wall moves less
+// than a fraction of h in a step. With
 // `align` > 0 a step that would pass the next multiple of align (from the fix's start) is
 // shortened to end on it, so frames on that interval land on their times. Thermo's dt
 // column shows the step it chose.
@@ -14,6 +16,7 @@
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/geometry/solid_body.hpp"
 
 namespace pbf {
 
@@ -68,6 +71,10 @@ class Cfl : public Fix {
         const double ax = P.data(*accel, 0)[i], ay = P.data(*accel, 1)[i], az = P.data(*accel, 2)[i];
         a2 = std::max(a2, ax * ax + ay * ay + az * az);
       }
+    }
+    for (const SolidBody* solid : sim.solid_bodies()) {
+      const double speed = solid->max_speed(sim.time(), sim.timestep());
+      v2 = std::max(v2, speed * speed);
     }
     const double h = sim.kernel_radius();
     double dt = max_dt_;

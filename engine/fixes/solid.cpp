@@ -13,10 +13,18 @@
 //    or all of it with no_slip.
 // Particles created inside the wall are left out at the start of a run, with their count
 // in the log.
+// A solid may move (`motion`: a function of time or keyframes, engine/geometry/motion.hpp).
+// The map stays in the frame where the scene placed the solid; a query at x in the world
+// asks it at T(t)^-1 x, with T(t) the solid's pose. Over a step the wall goes from T0 = T(t)
+// to T1 = T(t + dt): the step's path is searched in the wall's frame (from T0^-1 of the
+// start to T1^-1 of the predicted position), so a wall that moves into a particle pushes it,
+// and the wall's velocity at x is the motion of its point there, v_w = (x - T0 T1^-1 x) / dt:
+// the fluid keeps no velocity into the wall relative to it, and friction acts on the
+// tangential velocity relative to it.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <memory>
+#include <optional>
 #include <omp.h>
 #include <spdlog/spdlog.h>
 #include <vector>
@@ -25,9 +33,9 @@
 #include "engine/core/parallel.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/io/bytes.hpp"
+#include "engine/fixes/solid_shape.hpp"
 #include "engine/geometry/mesh_file.hpp"
-#include "engine/geometry/mesh_sdf.hpp"
-#include "engine/geometry/primitives.hpp"
+#include "engine/geometry/motion.hpp"
 #include "engine/geometry/solid_map.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/density_boundary.hpp"
@@ -38,36 +46,24 @@ namespace pbf {
 
 namespace {
 
-double norm(const Point& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-// FNV-1a of a file's bytes (0 when it cannot be read: the mesh reader then says why).
-std::uint64_t hash_of_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::uint64_t hash = 14695981039346656037ull;
-  char buffer[65536];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    for (std::streamsize k = 0; k < in.gcount(); ++k) hash = (hash ^ static_cast<unsigned char>(buffer[k])) * 1099511628211ull;
-    if (!in) break;
-  }
-  return hash;
-}
-
 class Solid : public Fix, public DensityBoundary, public SolidBody {
  public:
   Solid(const std::string& id, const Params& p)
       : Fix(id, "solid"),
-        shape_name_(p.string("shape")),
+        shape_(id, p),
         fluid_inside_(p.string("fluid") == "inside"),
         friction_(p.real("friction")),
         no_slip_(p.boolean("no_slip")),
-        wall_density_(p.boolean("wall_density")) {
-    const Vec3 scale = p.vec3("scale"), rotate = p.vec3("rotate"), translate = p.vec3("translate");
-    for (int a = 0; a < 3; ++a) {
-      placement_.scale[a] = scale[a];
-      placement_.rotate_deg[a] = rotate[a];
-      placement_.translate[a] = translate[a];
+        wall_density_(p.boolean("wall_density")),
+        motion_(p.has("motion") ? p.motion("motion") : nullptr) {
+    if (p.has("pivot")) {
+      const Vec3 pivot = p.vec3("pivot");
+      pivot_ = {pivot[0], pivot[1], pivot[2]};
     }
-    describe_shape(p);
+    if (motion_ && shape_.is_plane())
+      throw Error(fmt::format("solid '{}': a plane cannot move (its map covers the domain only): use a box", id));
+    if (!motion_ && p.has("pivot")) throw Error(fmt::format("solid '{}': 'pivot' needs a 'motion'", id));
+    surface_ = shape_.surface();
     std::string given;
     for (const auto& [name, value] : p.values()) given += (given.empty() ? "" : ", ") + name + " = " + format_value(value);
     description_ = given;
@@ -81,33 +77,58 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   const SolidBody* solid_body() const override { return this; }
   const std::string& name() const override { return id(); }
   const TriangleMesh& surface() const override { return surface_; }
+  std::uint64_t surface_version() const override { return surface_version_; }
   bool fluid_inside() const override { return fluid_inside_; }
   std::array<double, 6> load() const override { return load_; }
   void record_push(std::size_t i, const real momentum[3]) override {
     for (int c = 0; c < 3; ++c) push_[c][i] += momentum[c];
   }
 
+  // The fastest any point of the solid moves from t to t + dt: rigid motion displaces the
+  // points of a box by an affine map, so the largest displacement is at a corner of the box
+  // around the placed surface.
+  double max_speed(double t, double dt) const override {
+    if (!motion_ || !(dt > 0)) return 0;
+    const RigidTransform a = pose_at(t), b = pose_at(t + dt);
+    const auto box = bounds(shape_.surface());
+    double most = 0;
+    for (int k = 0; k < 8; ++k) {
+      const Point corner{box[k & 1][0], box[(k >> 1) & 1][1], box[(k >> 2) & 1][2]};
+      const Point p = a.apply(corner), q = b.apply(corner);
+      most = std::max(most, std::hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]));
+    }
+    return most / dt;
+  }
+
   // What the solid was made of, so a continued run can tell that it is the same solid: the
-  // mesh file's name and a hash of its bytes, and the description of shape and placement.
+  // mesh file's name and a hash of its bytes, the description of shape, placement and motion,
+  // and the pose it had when the restart was written.
   void save_state(ByteWriter& w) const override {
     w.put_string(description_);
-    w.put_string(file_);
-    w.put<std::uint64_t>(file_hash_);
+    w.put_string(shape_.file());
+    w.put<std::uint64_t>(shape_.file_hash());
+    for (double v : pose_.translate) w.put(v);
+    for (double v : pose_.rotate_deg) w.put(v);
   }
 
   void restore_state(ByteReader& r) override {
     const std::string description = r.get_string(), file = r.get_string();
     const auto hash = r.get<std::uint64_t>();
-    if (!file.empty() && file == file_ && hash != file_hash_)
+    Pose saved;
+    for (double& v : saved.translate) v = r.get<double>();
+    for (double& v : saved.rotate_deg) v = r.get<double>();
+    saved_pose_ = saved;
+    if (!file.empty() && file == shape_.file() && hash != shape_.file_hash())
       throw Error(fmt::format("solid '{}': mesh file '{}' has changed since the restart was written (its contents "
                               "differ): the continued run would not see the saved run's wall",
-                              id(), file_));
+                              id(), file));
     if (description != description_)
       spdlog::warn("solid '{}' is not the restart's ({}; now {}): the run continues with the new one", id(),
                    description, description_);
   }
 
   void prepare_scene(Simulation& sim) override {
+    move_to(sim.time());
     prepare(sim);
     auto& P = sim.particles();
     const real *x = P.x(), *y = P.y(), *z = P.z();
@@ -115,7 +136,8 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < P.size(); ++i) {
       real d, g[3];
-      const auto where = map_.distance(x[i], y[i], z[i], d, g);
+      const real q[3] = {x[i], y[i], z[i]};
+      const auto where = distance_at(now_, q, d, g);
       drop[i] = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < 0);
     }
     const std::size_t removed = P.remove(drop);
@@ -128,9 +150,17 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     }
   }
 
-  void init(Simulation& sim) override { prepare(sim); }
+  void init(Simulation& sim) override {
+    move_to(sim.time());
+    prepare(sim);
+    if (saved_pose_ && motion_ && !(*saved_pose_ == pose_))
+      spdlog::warn("solid '{}': its motion puts it elsewhere at t = {} than the restart saved it: the continued run "
+                   "differs from the saved one", id(), sim.time());
+    saved_pose_.reset();
+  }
 
-  // Builds the map when the scene it depends on (h, spacing, domain) changed.
+  // Builds the map when the scene it depends on (h, spacing, domain) changed. (Solvers call
+  // it within a step too: the pose stays the step's.)
   void prepare(const Simulation& sim) override {
     const bool changed = wall_.prepare(sim);
     const Domain& dom = sim.domain();
@@ -140,29 +170,40 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     built_ = true;
     const double start = omp_get_wtime();
     const double h = sim.kernel_radius();
-    const double spacing = lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
-    const double cell = std::min(h / 4, spacing / 2);
+    spacing_ = lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+    const double cell = cell_size();
     const double reach = SolidMap::required_reach(h, cell, wall_.delta());
-    if (!mesh_) primitive_ = make_primitive(dom);
-    check_against_domain(dom, spacing);
-    const std::unique_ptr<Shape> shape = mesh_ ? mesh_shape(surface_, cell, reach) : std::move(primitive_);
+    const std::unique_ptr<Shape> shape = shape_.make_shape(dom, cell, reach);
+    if (!motion_) surface_ = shape_.surface();  // a plane's is known now
+    // A moving solid is queried in the frame it was placed in, over all of its surface.
     SolidMap::Region region{{dom.lo[0], dom.lo[1], dom.lo[2]}, {dom.hi[0], dom.hi[1], dom.hi[2]}, cell};
+    if (motion_) {
+      const auto box = bounds(shape_.surface());
+      for (int a = 0; a < 3; ++a) {
+        region.lo[a] = std::min(region.lo[a], box[0][a]);
+        region.hi[a] = std::max(region.hi[a], box[1][a]);
+      }
+    }
     map_.build(*shape, fluid_inside_, region, wall_, sim.kernels());
     spdlog::info("solid '{}': {} triangles; density map of {} cells of {:.3g} m around the surface, built in {:.2f} s",
                  id(), surface_.triangles.size(), map_.active_bricks() * 64, cell, omp_get_wtime() - start);
-    if (!fluid_inside_ && shape_name_ != "plane") check_thickness(spacing);
+    if (!fluid_inside_ && !shape_.is_plane()) check_thickness(spacing_);
   }
 
   void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const override {
     real f, g[3];
-    if (map_.fraction(x, y, z, f, g) == SolidMap::Where::fluid) return;
+    const real q[3] = {x, y, z};
+    if (fraction_at(now_, q, f, g) == SolidMap::Where::fluid) return;
     const real rho0 = real(sim.rest_density());
     rho += rho0 * f;
     for (int a = 0; a < 3; ++a) grad[a] += rho0 * g[a];
   }
 
-  // Where each particle starts the step, and how far it is from the wall there.
+  // Where each particle starts the step, in the wall's frame, and how far it is from the wall
+  // there; the wall moves to where it is at the step's end.
   void external_forces(Simulation& sim) override {
+    before_ = now_;
+    move_to(sim.time() + sim.timestep());
     const auto& P = sim.particles();
     const std::size_t n = P.size();
     for (auto& s : start_) s.resize(n);
@@ -171,11 +212,11 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const real *x = P.x(), *y = P.y(), *z = P.z();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      start_[0][i] = x[i];
-      start_[1][i] = y[i];
-      start_[2][i] = z[i];
-      real d, g[3];
-      start_distance_[i] = map_.distance(x[i], y[i], z[i], d, g) == SolidMap::Where::fluid ? real(1e30) : d;
+      const real q[3] = {x[i], y[i], z[i]};
+      real b[3], d, g[3];
+      to_frame(before_, q, b);
+      for (int a = 0; a < 3; ++a) start_[a][i] = b[a];
+      start_distance_[i] = map_.distance(b[0], b[1], b[2], d, g) == SolidMap::Where::fluid ? real(1e30) : d;
     }
   }
 
@@ -197,11 +238,13 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const real inv_dt = real(1 / sim.timestep());
 #pragma omp parallel for schedule(static) reduction(min : lost)
     for (std::size_t i = 0; i < n; ++i) {
-      real p[3] = {x[i], y[i], z[i]};
-      if (!keep_out(i, p)) lost = std::min(lost, i);
-      p[0] = std::clamp(p[0], lo[0], hi[0]);
-      p[1] = std::clamp(p[1], lo[1], hi[1]);
-      p[2] = std::clamp(p[2], lo[2], hi[2]);
+      real p[3] = {x[i], y[i], z[i]}, b[3];
+      to_frame(now_, p, b);
+      const real p0[3] = {start_[0][i], start_[1][i], start_[2][i]};
+      const Contact contact = keep_out(p0, start_distance_[i], b);
+      if (contact == Contact::lost) lost = std::min(lost, i);
+      if (contact == Contact::moved) to_world(now_, b, p);
+      for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], lo[a], hi[a]);
       if (moves_momentum) {
         push_[0][i] += m[i] * (p[0] - x[i]) * inv_dt;
         push_[1][i] += m[i] * (p[1] - y[i]) * inv_dt;
@@ -212,8 +255,10 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       z[i] = p[2];
     }
     if (lost < n)
-      throw Error(fmt::format("particle {} at ({}, {}, {}) went through solid '{}' at step {}", P.ids()[lost], x[lost],
-                              y[lost], z[lost], id(), sim.step() + 1));
+      throw Error(fmt::format("particle {} at ({}, {}, {}) went through solid '{}' at step {}{}", P.ids()[lost], x[lost],
+                              y[lost], z[lost], id(), sim.step() + 1,
+                              motion_ ? " (a moving wall needs a step that keeps its motion below the spacing: cfl)"
+                                      : ""));
   }
 
   void velocity_update(Simulation& sim) override {
@@ -223,19 +268,29 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const real keep = no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
     const real* m = P.mass();
     const real touching = real(contact_tolerance());
+    const double inv_dt = 1 / sim.timestep();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < P.size(); ++i) {
       real d, g[3];
-      if (map_.distance(x[i], y[i], z[i], d, g) != SolidMap::Where::near || d > touching) continue;
+      const real q[3] = {x[i], y[i], z[i]};
+      if (distance_at(now_, q, d, g) != SolidMap::Where::near || d > touching) continue;
       const real len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
       if (len == 0) continue;
       const real nrm[3] = {g[0] / len, g[1] / len, g[2] / len};
-      real vn = vx[i] * nrm[0] + vy[i] * nrm[1] + vz[i] * nrm[2];
+      // The wall's velocity where the particle touches it: where that point of the wall was
+      // at the step's start.
+      real wall[3] = {0, 0, 0};
+      if (motion_) {
+        const Point was = before_.apply(now_.apply_inverse({double(q[0]), double(q[1]), double(q[2])}));
+        for (int a = 0; a < 3; ++a) wall[a] = real((q[a] - was[a]) * inv_dt);
+      }
+      const real rel[3] = {vx[i] - wall[0], vy[i] - wall[1], vz[i] - wall[2]};
+      real vn = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
       if (vn > 0) vn = 0;  // leaving the wall: keep it
-      const real v[3] = {vx[i] - vn * nrm[0], vy[i] - vn * nrm[1], vz[i] - vn * nrm[2]};
+      const real v[3] = {rel[0] - vn * nrm[0], rel[1] - vn * nrm[1], rel[2] - vn * nrm[2]};
       const real vt = v[0] * nrm[0] + v[1] * nrm[1] + v[2] * nrm[2];  // >= 0: the normal part kept
-      const real after[3] = {vt * nrm[0] + keep * (v[0] - vt * nrm[0]), vt * nrm[1] + keep * (v[1] - vt * nrm[1]),
-                             vt * nrm[2] + keep * (v[2] - vt * nrm[2])};
+      real after[3];
+      for (int a = 0; a < 3; ++a) after[a] = wall[a] + vt * nrm[a] + keep * (v[a] - vt * nrm[a]);
       push_[0][i] += m[i] * (after[0] - vx[i]);
       push_[1][i] += m[i] * (after[1] - vy[i]);
       push_[2][i] += m[i] * (after[2] - vz[i]);
@@ -262,6 +317,8 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   }
 
  private:
+  enum class Contact { none, moved, lost };
+
   // Particles are kept a hair in front of the surface, above the map's rounding (a mesh's
   // distances are single precision), so that a wall on a face of the domain never leaves one
   // outside it; within twice the hair a particle touches the wall.
@@ -269,17 +326,69 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   double contact_tolerance() const { return 2 * hair(); }
   double cell_size() const { return std::min(built_for_[0] / 4, spacing_ / 2); }
 
-  // Moves p (particle i's position) out of the wall along the path it took this step. False
-  // when the particle is deep inside the wall, which projection cannot undo.
-  bool keep_out(std::size_t i, real p[3]) const {
+  RigidTransform pose_at(double t) const { return motion_ ? transform_of(motion_->at(t), pivot_) : RigidTransform{}; }
+
+  // Puts the solid where its motion has it at time t (the surface the outputs draw with it).
+  void move_to(double t) {
+    if (!motion_) return;
+    try {
+      pose_ = motion_->at(t);
+    } catch (const Error& e) {
+      throw Error(fmt::format("solid '{}': {}", id(), e.what()), e.located());
+    }
+    const RigidTransform next = transform_of(pose_, pivot_);
+    if (next == now_ && surface_version_ > 0) return;
+    now_ = next;
+    const TriangleMesh& placed = shape_.surface();
+    for (std::size_t k = 0; k < placed.vertices.size(); ++k) surface_.vertices[k] = now_.apply(placed.vertices[k]);
+    ++surface_version_;
+  }
+
+  // A world point in the frame the map was built in (the same point for a solid at rest), and back.
+  void to_frame(const RigidTransform& T, const real q[3], real b[3]) const {
+    if (!motion_) {
+      std::copy(q, q + 3, b);
+      return;
+    }
+    const Point p = T.apply_inverse({double(q[0]), double(q[1]), double(q[2])});
+    for (int a = 0; a < 3; ++a) b[a] = real(p[a]);
+  }
+  void to_world(const RigidTransform& T, const real b[3], real q[3]) const {
+    const Point p = T.apply({double(b[0]), double(b[1]), double(b[2])});
+    for (int a = 0; a < 3; ++a) q[a] = real(p[a]);
+  }
+  // The map's answer at world point q with the solid at pose T: a gradient is turned back
+  // into the world.
+  SolidMap::Where distance_at(const RigidTransform& T, const real q[3], real& d, real g[3]) const {
+    real b[3];
+    to_frame(T, q, b);
+    const auto where = map_.distance(b[0], b[1], b[2], d, g);
+    if (motion_) rotate_to_world(T, g);
+    return where;
+  }
+  SolidMap::Where fraction_at(const RigidTransform& T, const real q[3], real& f, real g[3]) const {
+    real b[3];
+    to_frame(T, q, b);
+    const auto where = map_.fraction(b[0], b[1], b[2], f, g);
+    if (motion_) rotate_to_world(T, g);
+    return where;
+  }
+  static void rotate_to_world(const RigidTransform& T, real g[3]) {
+    const Point r = T.rotate({double(g[0]), double(g[1]), double(g[2])});
+    for (int a = 0; a < 3; ++a) g[a] = real(r[a]);
+  }
+
+  // Moves p out of the wall along the path the particle took this step from p0, where it
+  // started at `start_distance` from the wall (both in the wall's frame). Lost when the
+  // particle is deep inside the wall, which projection cannot undo.
+  Contact keep_out(const real p0[3], real start_distance, real p[3]) const {
     real d, g[3];
     const auto where = map_.distance(p[0], p[1], p[2], d, g);
-    const real p0[3] = {start_[0][i], start_[1][i], start_[2][i]};
     const real step[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
     const real len = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
     const real hair = real(this->hair());
     const bool inside = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < hair / 2);
-    if (!inside && len < start_distance_[i]) return true;  // cannot have reached the wall
+    if (!inside && len < start_distance) return Contact::none;  // cannot have reached the wall
     // March from the start: the first point at or behind the surface is where it met the wall.
     const real min_step = real(0.25 * cell_size());
     real s = 0, hit[3], dh = 0, gh[3];
@@ -287,7 +396,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     while (true) {
       for (int a = 0; a < 3; ++a) hit[a] = p0[a] + (len > 0 ? s / len : 0) * step[a];
       const auto w = map_.distance(hit[0], hit[1], hit[2], dh, gh);
-      if (w == SolidMap::Where::wall) return false;
+      if (w == SolidMap::Where::wall) return Contact::lost;
       if (w == SolidMap::Where::near && dh < hair / 2) {
         met = true;
         break;
@@ -295,7 +404,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       if (s >= len) break;
       s = std::min(len, s + std::max(w == SolidMap::Where::fluid ? real(1e30) : dh, min_step));
     }
-    if (!met) return true;  // passed near the wall without touching it
+    if (!met) return Contact::none;  // passed near the wall without touching it
     // Take away the motion into the wall at the contact point, keep the motion along it.
     const real gl = std::sqrt(gh[0] * gh[0] + gh[1] * gh[1] + gh[2] * gh[2]);
     if (gl > 0) {
@@ -308,115 +417,13 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     // (one for a flat wall).
     for (int it = 0; it < 4; ++it) {
       const auto w = map_.distance(p[0], p[1], p[2], d, g);
-      if (w == SolidMap::Where::wall) return false;
+      if (w == SolidMap::Where::wall) return Contact::lost;
       if (w == SolidMap::Where::fluid || d >= hair / 2) break;
       const real g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
       if (g2 == 0) break;
       for (int a = 0; a < 3; ++a) p[a] -= (d - hair) * g[a] / g2;
     }
-    return true;
-  }
-
-  void describe_shape(const Params& p) {
-    // Each shape's own parameters; another shape's given here is a slip, refused.
-    const std::vector<std::pair<std::string, std::vector<std::string>>> own = {
-        {"mesh", {"file"}},
-        {"box", {"lo", "hi"}},
-        {"sphere", {"center", "radius"}},
-        {"cylinder", {"base", "top", "radius"}},
-        {"plane", {"point", "normal"}}};
-    for (const auto& [shape, names] : own)
-      for (const auto& name : names) {
-        bool used = false;
-        for (const auto& [mine, my_names] : own)
-          used = used || (mine == shape_name_ && std::find(my_names.begin(), my_names.end(), name) != my_names.end());
-        if (!used && p.has(name))
-          throw Error(fmt::format("parameter '{}' does not apply to shape '{}' (it belongs to '{}')", name, shape_name_,
-                                  shape));
-      }
-    auto need = [&](const char* name) {
-      if (!p.has(name)) throw Error(fmt::format("shape '{}' needs the parameter '{}'", shape_name_, name));
-      return p.vec3(name);
-    };
-    auto point = [](const Vec3& v) { return Point{v[0], v[1], v[2]}; };
-    if (shape_name_ == "mesh") {
-      if (!p.has("file")) throw Error("shape 'mesh' needs the parameter 'file' (an OBJ or STL file)");
-      file_ = p.string("file");
-      TriangleMesh mesh = read_mesh_file(file_);  // first: it refuses what is no mesh file (a device, a directory)
-      file_hash_ = hash_of_file(file_);
-      check_closed(mesh, fmt::format("mesh file '{}'", p.string("file")));
-      orient_outward(mesh);
-      place(mesh, placement_);
-      surface_ = std::move(mesh);
-      mesh_ = true;
-      return;
-    }
-    if (shape_name_ == "box") {
-      lo_ = point(need("lo"));
-      hi_ = point(need("hi"));
-      for (int a = 0; a < 3; ++a)
-        if (!(hi_[a] > lo_[a])) throw Error(fmt::format("box: 'hi' must exceed 'lo' along {}", "xyz"[a]));
-      surface_ = box_mesh(lo_, hi_);
-    } else if (shape_name_ == "sphere" || shape_name_ == "cylinder") {
-      if (!p.has("radius")) throw Error(fmt::format("shape '{}' needs the parameter 'radius'", shape_name_));
-      radius_ = p.real("radius");
-      if (shape_name_ == "sphere") {
-        lo_ = point(need("center"));
-        surface_ = sphere_mesh(lo_, radius_, radius_ / 8);
-      } else {
-        lo_ = point(need("base"));
-        hi_ = point(need("top"));
-        if (norm({hi_[0] - lo_[0], hi_[1] - lo_[1], hi_[2] - lo_[2]}) == 0)
-          throw Error("cylinder: 'base' and 'top' are the same point");
-        surface_ = cylinder_mesh(lo_, hi_, radius_, radius_ / 8);
-      }
-    } else {  // plane: its surface is drawn where it cuts the domain, known at the run
-      lo_ = point(need("point"));
-      hi_ = point(need("normal"));
-      if (norm(hi_) == 0) throw Error("plane: 'normal' must not be zero");
-      return;
-    }
-    place(surface_, placement_);
-  }
-
-  std::unique_ptr<Shape> make_primitive(const Domain& dom) {
-    if (shape_name_ == "box") return box_shape(lo_, hi_, placement_);
-    if (shape_name_ == "sphere") return sphere_shape(lo_, radius_, placement_);
-    if (shape_name_ == "cylinder") return cylinder_shape(lo_, hi_, radius_, placement_);
-    // A plane placed: its point and normal in the world, then an unplaced half-space.
-    TriangleMesh marker;
-    marker.vertices = {{lo_[0], lo_[1], lo_[2]}, {lo_[0] + hi_[0], lo_[1] + hi_[1], lo_[2] + hi_[2]}};
-    place(marker, placement_);
-    const Point at = marker.vertices[0];
-    const Point normal{marker.vertices[1][0] - at[0], marker.vertices[1][1] - at[1], marker.vertices[1][2] - at[2]};
-    surface_ = plane_patch(at, normal, {dom.lo[0], dom.lo[1], dom.lo[2]}, {dom.hi[0], dom.hi[1], dom.hi[2]});
-    plane_point_ = at;
-    plane_normal_ = normal;
-    return plane_shape(at, normal, Placement{});
-  }
-
-  void check_against_domain(const Domain& dom, double spacing) {
-    spacing_ = spacing;
-    if (shape_name_ == "plane") {  // the half-space must reach into the domain
-      bool touches = false;
-      for (int k = 0; k < 8; ++k) {
-        const Point corner{k & 1 ? dom.hi[0] : dom.lo[0], k & 2 ? dom.hi[1] : dom.lo[1], k & 4 ? dom.hi[2] : dom.lo[2]};
-        touches = touches || (corner[0] - plane_point_[0]) * plane_normal_[0] + (corner[1] - plane_point_[1]) * plane_normal_[1] +
-                                     (corner[2] - plane_point_[2]) * plane_normal_[2] <=
-                                 0;
-      }
-      if (!touches)
-        throw Error(fmt::format("solid '{}' lies outside the domain: the plane through ({:.6g}, {:.6g}, {:.6g}) leaves "
-                                "the whole domain on its fluid side",
-                                id(), plane_point_[0], plane_point_[1], plane_point_[2]));
-      return;
-    }
-    const auto b = bounds(surface_);
-    for (int a = 0; a < 3; ++a)
-      if (b[0][a] > dom.hi[a] || b[1][a] < dom.lo[a])
-        throw Error(fmt::format("solid '{}' lies outside the domain: it spans [{:.6g}, {:.6g}] along {}, the domain "
-                                "[{:.6g}, {:.6g}]",
-                                id(), b[0][a], b[1][a], "xyz"[a], dom.lo[a], dom.hi[a]));
+    return Contact::moved;
   }
 
   // An obstacle thinner than the particle spacing lets particles through between its nodes.
@@ -428,19 +435,18 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
                               id(), 2 * depth + cell_size(), spacing));
   }
 
-  std::string shape_name_, description_;
-  std::string file_;             // the mesh file ("" for a primitive)
-  std::uint64_t file_hash_ = 0;  // FNV-1a of its bytes
+  SolidShape shape_;
+  std::string description_;
   bool fluid_inside_;
   double friction_;
   bool no_slip_, wall_density_;
-  Placement placement_;
-  Point lo_{}, hi_{};  // the primitive's two points (box corners, sphere centre, cylinder ends, plane point and normal)
-  double radius_ = 0;
-  Point plane_point_{}, plane_normal_{};  // a plane's, placed in the world
-  bool mesh_ = false;
-  TriangleMesh surface_;
-  std::unique_ptr<Shape> primitive_;  // between its making and the map's build
+  MotionPtr motion_;  // nullptr: at rest
+  Point pivot_{};
+  Pose pose_;                           // where the motion has it now
+  std::optional<Pose> saved_pose_;      // the restart's, until init compares
+  RigidTransform before_, now_;         // its pose at the step's start and end (now)
+  TriangleMesh surface_;                // the surface where it is now
+  std::uint64_t surface_version_ = 0;
 
   HalfSpaceWall wall_;
   SolidMap map_;
@@ -484,7 +490,13 @@ void register_solid(StyleRegistry& r) {
           ParamSpec{"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at the wall, exp(-rate dt)"}
               .at_least(0),
           {"no_slip", ParamType::Bool, false, "", "stop all tangential motion at the wall (overrides friction)"},
-          {"wall_density", ParamType::Bool, true, "", "count the wall as fluid at rest density behind its surface"}},
+          {"wall_density", ParamType::Bool, true, "", "count the wall as fluid at rest density behind its surface"},
+          ParamSpec{"motion", ParamType::Motion, std::nullopt, "",
+                    "pose over time: function(t) returning {translate = {...}, rotate = {...}}, or pbf.keyframes{...}",
+                    true},
+          ParamSpec{"pivot", ParamType::Vector3, std::nullopt, "m",
+                    "the point the motion's rotation turns about (default: the origin)", true}
+              .magnitude_at_most(1e6)},
          [](const std::string& id, const Params& p) { return std::make_unique<Solid>(id, p); }, nullptr});
 }
 

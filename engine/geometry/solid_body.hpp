@@ -19,6 +19,9 @@ class SolidBody {
   // Changes whenever the surface moves (a static solid keeps 0), so an output writes a
   // surface file again only when it changed.
   virtual std::uint64_t surface_version() const { return 0; }
+  // The fastest any point of the surface moves between t and t + dt (m/s; 0 at rest), for
+  // time-step control.
+  virtual double max_speed(double /*t*/, double /*dt*/) const { return 0; }
   // True for a container (fluid inside the surface), false for an obstacle.
   virtual bool fluid_inside() const = 0;
   // What the fluid exerted on the solid, averaged over the last step: the force (N) and the

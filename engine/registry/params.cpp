@@ -6,6 +6,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/names.hpp"
+#include "engine/geometry/motion.hpp"
 
 namespace pbf {
 
@@ -17,6 +18,8 @@ const char* type_name(ParamType type) {
     case ParamType::String: return "string";
     case ParamType::Vector3: return "vector {x, y, z}";
     case ParamType::StringList: return "list of names";
+    case ParamType::PointList: return "list of points {{x, y, z}, ...}";
+    case ParamType::Motion: return "motion: function(t) or pbf.keyframes";
   }
   return "?";
 }
@@ -33,6 +36,12 @@ std::string format_value(const ParamValue& value) {
       for (const auto& name : v) s += (s.empty() ? "\"" : ", \"") + name + "\"";
       return "{" + s + "}";
     }
+    std::string operator()(const Points& v) const {
+      std::string s;
+      for (const auto& p : v) s += fmt::format("{}{{{}, {}, {}}}", s.empty() ? "" : ", ", p[0], p[1], p[2]);
+      return "{" + s + "}";
+    }
+    std::string operator()(const MotionPtr& v) const { return v ? v->description() : "none"; }
   } visitor;
   return std::visit(visitor, value);
 }
@@ -46,7 +55,9 @@ const char* given_type(const ParamValue& value) {
     case 2: return "boolean";
     case 3: return "string";
     case 4: return "vector";
-    default: return "list of names";
+    case 5: return "list of names";
+    case 6: return "list of points";
+    default: return "motion";
   }
 }
 
@@ -77,6 +88,14 @@ std::optional<ParamValue> coerce(const ParamValue& value, ParamType type) {
       if (auto* v = std::get_if<Names>(&value)) return *v;
       if (auto* s = std::get_if<std::string>(&value)) return Names{*s};  // one name alone
       return std::nullopt;
+    case ParamType::PointList:
+      if (auto* v = std::get_if<Points>(&value)) return *v;
+      if (auto* v = std::get_if<Vec3>(&value)) return Points{*v};  // one point alone
+      if (auto* v = std::get_if<Names>(&value); v && v->empty()) return Points{};  // {}
+      return std::nullopt;
+    case ParamType::Motion:
+      if (auto* v = std::get_if<MotionPtr>(&value)) return *v;
+      return std::nullopt;
   }
   return std::nullopt;
 }
@@ -99,6 +118,9 @@ void check_range(const std::string& what, const ParamSpec& spec, const ParamValu
   if (auto* i = std::get_if<std::int64_t>(&value)) check(static_cast<double>(*i));
   if (auto* v = std::get_if<Vec3>(&value))
     for (double c : *v) check(c);
+  if (auto* v = std::get_if<Points>(&value))
+    for (const auto& point : *v)
+      for (double c : point) check(c);
   if (auto* text = std::get_if<std::string>(&value);
       text && !spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), *text) == spec.choices.end())
     throw Error(fmt::format("{}: parameter '{}' must be one of {}, got \"{}\"{}", what, spec.name, spec.allowed(), *text,
@@ -151,6 +173,11 @@ Params::Params(const std::string& what, const std::vector<ParamSpec>& schema, co
     if (auto* v = std::get_if<Vec3>(&*converted))
       for (double c : *v)
         if (!std::isfinite(c)) throw Error(fmt::format("{}: parameter '{}' must be finite", what, name));
+    if (auto* v = std::get_if<Points>(&*converted))
+      for (std::size_t k = 0; k < v->size(); ++k)
+        for (double c : (*v)[k])
+          if (!std::isfinite(c))
+            throw Error(fmt::format("{}: parameter '{}': point {} must be finite", what, name, k + 1));
     check_range(what, *spec, *converted);
     values_[name] = *converted;
   }
@@ -173,5 +200,7 @@ bool Params::boolean(const std::string& name) const { return std::get<bool>(at(n
 const std::string& Params::string(const std::string& name) const { return std::get<std::string>(at(name)); }
 Vec3 Params::vec3(const std::string& name) const { return std::get<Vec3>(at(name)); }
 const Names& Params::names(const std::string& name) const { return std::get<Names>(at(name)); }
+const Points& Params::points(const std::string& name) const { return std::get<Points>(at(name)); }
+MotionPtr Params::motion(const std::string& name) const { return std::get<MotionPtr>(at(name)); }
 
 }  // namespace pbf

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -13,12 +14,16 @@
 
 namespace pbf {
 
-enum class ParamType { Real, Integer, Bool, String, Vector3, StringList };
+class Motion;  // engine/geometry/motion.hpp: a solid's pose as a function of time
+
+enum class ParamType { Real, Integer, Bool, String, Vector3, StringList, PointList, Motion };
 const char* type_name(ParamType type);
 
 using Vec3 = std::array<double, 3>;
 using Names = std::vector<std::string>;
-using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, Names>;
+using Points = std::vector<Vec3>;
+using MotionPtr = std::shared_ptr<const Motion>;
+using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, Names, Points, MotionPtr>;
 
 std::string format_value(const ParamValue& value);
 
@@ -85,6 +90,8 @@ class Params {
   const std::string& string(const std::string& name) const;
   Vec3 vec3(const std::string& name) const;
   const Names& names(const std::string& name) const;
+  const Points& points(const std::string& name) const;
+  MotionPtr motion(const std::string& name) const;
   bool has(const std::string& name) const { return values_.count(name) > 0; }
   const std::map<std::string, ParamValue>& values() const { return values_; }
 
