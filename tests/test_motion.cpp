@@ -250,5 +250,5 @@ pbf.run(5)
   EXPECT_ERROR_NAMING(fix("floor", "solid", {{"shape", std::string("plane")}, {"point", Vec3{0, 0, 0}},
                                              {"normal", Vec3{0, 0, 1}},
                                              {"motion", along_x({{0, 0}}, Keyframes::Interpolation::linear)}}),
-                      "solid 'floor'", "a plane cannot move");
+                      "plane", "a plane cannot move");
 }

@@ -61,8 +61,8 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       pivot_ = {pivot[0], pivot[1], pivot[2]};
     }
     if (motion_ && shape_.is_plane())
-      throw Error(fmt::format("solid '{}': a plane cannot move (its map covers the domain only): use a box", id));
-    if (!motion_ && p.has("pivot")) throw Error(fmt::format("solid '{}': 'pivot' needs a 'motion'", id));
+      throw Error("a plane cannot move (its map covers the domain only): use a box");
+    if (!motion_ && p.has("pivot")) throw Error("'pivot' needs a 'motion'");
     surface_ = shape_.surface();
     std::string given;
     for (const auto& [name, value] : p.values()) given += (given.empty() ? "" : ", ") + name + " = " + format_value(value);
@@ -89,7 +89,13 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   // around the placed surface.
   double max_speed(double t, double dt) const override {
     if (!motion_ || !(dt > 0)) return 0;
-    const RigidTransform a = pose_at(t), b = pose_at(t + dt);
+    RigidTransform a, b;
+    try {
+      a = pose_at(t);
+      b = pose_at(t + dt);
+    } catch (const Error& e) {  // asked by time-step control: say whose motion it is
+      throw Error(fmt::format("solid '{}': {}", id(), e.what()), e.located());
+    }
     const auto box = bounds(shape_.surface());
     double most = 0;
     for (int k = 0; k < 8; ++k) {
@@ -203,7 +209,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   // there; the wall moves to where it is at the step's end.
   void external_forces(Simulation& sim) override {
     before_ = now_;
-    move_to(sim.time() + sim.timestep());
+    move_to(sim.time() + sim.timestep(), true);
     const auto& P = sim.particles();
     const std::size_t n = P.size();
     for (auto& s : start_) s.resize(n);
@@ -329,11 +335,12 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   RigidTransform pose_at(double t) const { return motion_ ? transform_of(motion_->at(t), pivot_) : RigidTransform{}; }
 
   // Puts the solid where its motion has it at time t (the surface the outputs draw with it).
-  void move_to(double t) {
+  void move_to(double t, bool within_step = false) {
     if (!motion_) return;
     try {
       pose_ = motion_->at(t);
     } catch (const Error& e) {
+      if (!e.located() && within_step) throw;  // the run loop names the step and the fix
       throw Error(fmt::format("solid '{}': {}", id(), e.what()), e.located());
     }
     const RigidTransform next = transform_of(pose_, pivot_);

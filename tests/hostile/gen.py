@@ -863,6 +863,45 @@ def gen_lua_rules(g):
         scene + ['@pbf.read_scene("s.txt")'], "refused", "line", "read_scene", "touch=s.txt")
     add("lua_write_restart_empty", "pbf.write_restart with no particle: refused",
         scene[:3] + ['@pbf.write_restart("e.restart")'], "refused", "line", "", "absent=e.restart*")
+    g.section("Moving solids: motion functions that fail, return no pose or NaN (at once or later), and "
+              "keyframes that are out of order, not finite or malformed; each names the solid or the key.")
+    ball = 'pbf.fix("ball", "solid", {shape = "sphere", center = {0.06, 0.06, 0.06}, radius = 0.02, motion = %s})'
+    for label, motion, outcome, kind, says in [
+            ("fn_error", 'function(t) error("no pose") end', "refused", "file", "ball && no pose"),
+            ("fn_nan", "function(t) return {translate = {0/0, 0, 0}} end", "refused", "file", "ball && nan"),
+            ("fn_nan_later", "function(t) return {translate = {t > 0.0015 and 0/0 or 0, 0, 0}} end", "refused",
+             "file", "ball && t = 0.002 && nan"),
+            ("fn_inf", "function(t) return {rotate = {0, 1/0, 0}} end", "refused", "file", "ball && inf"),
+            ("fn_huge", "function(t) return {translate = {1e300, 0, 0}} end", "refused", "file", "ball && 1e+300"),
+            ("fn_nil", "function(t) end", "refused", "file", "ball && returned a nil"),
+            ("fn_string", 'function(t) return "here" end', "refused", "file", "ball && returned a string"),
+            ("fn_short", "function(t) return {translate = {1, 2}} end", "refused", "file", "ball && translate"),
+            ("fn_yield", "function(t) coroutine.yield() end", "refused", "file", "ball"),
+            ("fn_table_error", "function(t) error({}) end", "refused", "file", "ball"),
+            ("fn_still", "function(t) return {} end", "accepted", "file", ""),
+            ("keys_order", "pbf.keyframes{{t = 1}, {t = 0.5}}", "refused", "line", "key 2 (t = 0.5)"),
+            ("keys_same_t", "pbf.keyframes{{t = 0}, {t = 0}}", "refused", "line", "key 2 (t = 0)"),
+            ("keys_nan_t", "pbf.keyframes{{t = 0/0}}", "refused", "line", "key 1"),
+            ("keys_huge", "pbf.keyframes{{t = 0, translate = {1e300, 0, 0}}}", "refused", "line", "key 1"),
+            ("keys_empty", "pbf.keyframes{}", "refused", "line", "at least one key"),
+            ("keys_number", "pbf.keyframes(3)", "refused", "line", "keyframes"),
+            ("keys_key_number", "pbf.keyframes{0, 1}", "refused", "line", "key 1"),
+            ("keys_no_t", "pbf.keyframes{{translate = {0, 0, 0}}}", "refused", "line", "key 1: 't'"),
+            ("keys_interp", 'pbf.keyframes{{t = 0}, interpolation = "cubic"}', "refused", "line", "interpolation"),
+            ("keys_unknown", "pbf.keyframes{{t = 0}, speed = 2}", "refused", "line", "speed"),
+            ("keys_short", "pbf.keyframes{{t = 0, rotate = {1, 2}}}", "refused", "line", "rotate"),
+            ("keys_spline", 'pbf.keyframes{{t = 0}, {t = 0.001, translate = {0.001, 0, 0}}, {t = 1}, '
+             'interpolation = "spline"}', "accepted", "line", ""),
+            ("number", "5", "refused", "line", "motion"),
+            ("points", "{{0, 0, 0}}", "refused", "line", "motion")]:
+        add(f"motion_{label}", f"a sphere moved by {motion}: {outcome}",
+            scene + pipe + ["@" + ball % motion, "pbf.run(2)"], outcome, kind, says)
+    add("motion_plane", "a moving plane: refused (its map covers the domain only)",
+        scene + pipe + ['@pbf.fix("floor", "solid", {shape = "plane", point = {0, 0, 0.01}, normal = {0, 0, 1}, '
+                        "motion = function(t) return {} end})", "pbf.run(1)"], "refused", "line", "'floor' && plane")
+    add("motion_pivot_alone", "a pivot without a motion: refused",
+        scene + pipe + ['@pbf.fix("ball", "solid", {shape = "sphere", center = {0.06, 0.06, 0.06}, radius = 0.02, '
+                        "pivot = {0, 0, 0}})", "pbf.run(1)"], "refused", "line", "pivot")
     text, _ = lua_script("-v given but never read: one warning naming it", scene + pipe + ["pbf.run(1)"])
     g.file("lua_var_unread.lua", text)
     g.case("lua_var_unread", f"run {d}/lua_var_unread.lua -v partcles=3", "warned", "partcles")
