@@ -88,15 +88,18 @@ TEST(Params, HelpListsEveryStyleAndEveryParameter) {
 }
 
 // A style's defaults must pass its own checks: a default outside its range would make the
-// style unusable without that parameter. (A required parameter gets a plain value: a name.)
+// style unusable without that parameter. (A required parameter gets a plain value of its type.)
 TEST(Params, EveryDefaultIsInItsRange) {
   for (const auto& s : StyleRegistry::builtin().styles()) {
     GivenParams defaults;
     for (const auto& p : s.params) {
       if (p.default_value) defaults.emplace_back(p.name, *p.default_value);
       if (!p.default_value && !p.optional) {
-        ASSERT_EQ(p.type, ParamType::String) << s.name << "." << p.name << ": give this test a value of its type";
-        defaults.emplace_back(p.name, std::string("name"));
+        if (p.type == ParamType::String) defaults.emplace_back(p.name, std::string("name"));
+        else if (p.type == ParamType::StringList) defaults.emplace_back(p.name, Names{"name"});
+        else if (p.type == ParamType::PointList) defaults.emplace_back(p.name, Points{{0, 0, 0}});
+        else if (p.type == ParamType::Real) defaults.emplace_back(p.name, 1.0);
+        else FAIL() << s.name << "." << p.name << ": give this test a value of its type";
       }
     }
     EXPECT_NO_THROW(Params(s.name, s.params, defaults)) << s.name;

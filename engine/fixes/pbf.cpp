@@ -9,17 +9,45 @@
 // S0 is sum_k |grad_k C_i|^2 for a particle at rest inside the initial lattice. Measuring
 // epsilon and s_corr in units of S0 makes them scale-free: the same parameters behave the
 // same at any resolution and in any unit system (the paper's values assume its units).
+//
+// Pressure (docs/physics.md, "Pressure in PBF"): a pressure p moves particle i in one step by
+// dt^2 a_i = -dt^2/rho0^2 sum_j m_j (p_i + p_j) gradW_ij; the iterations move it by
+// 1/rho0 sum_j m_j (lambda_i + lambda_j) gradW_ij each; and the spiky SPH gradient of a
+// linear field on the initial lattice is kappa times its gradient (kappa = 0.947 at h = 2s),
+// so the pressure whose gradient moves the fluid so is
+//   p_i = -kappa rho0 / dt^2 sum_iterations lambda_i / (1 + min(1, rho_wall,i / rho_wall,1))
+// The last factor: a wall moves i by lambda_i / rho0 grad(rho_wall) (the wall has no lambda),
+// where walls mirroring the pressure would push with 2 p_i, so a particle against a wall
+// (rho_wall,1: the wall density of a lattice's first layer) carries twice the multiplier.
+// Kept in the field "pressure" only when asked for (parameter `pressure`, or a pressure probe).
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "engine/core/error.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
+#include "engine/sph/point_query.hpp"
 #include "engine/core/simulation.hpp"
 
 namespace pbf {
 
 namespace {
+
+// kappa = -1/3 sum_j V_j g(r_j) r_j^2 over the lattice of the particles' mean mass, V_j = m / rho0
+// and gradW = g(r) r_vec (spiky): sum_j V_j (p_j - p_i) gradW_ij = kappa grad p for a linear p.
+double spiky_gradient_norm(double mass, const Kernels& K, double rho0) {
+  const double s = lattice_spacing(mass, K, rho0), h = K.h;
+  const int reach = static_cast<int>(std::ceil(h / s));
+  double sum = 0;
+  for (int k = -reach; k <= reach; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const double r2 = (i * i + j * j + k * k) * s * s;
+        if (r2 < h * h) sum += K.spiky_grad_factor(real(r2)) * r2;
+      }
+  return -mass / rho0 * sum / 3;
+}
 
 class PositionBasedFluid : public Fix {
  public:
@@ -30,7 +58,8 @@ class PositionBasedFluid : public Fix {
         k_(p.real("scorr_k")),
         n_(static_cast<int>(p.integer("scorr_n"))),
         dq_(p.real("scorr_dq")),
-        one_sided_(p.boolean("one_sided")) {}
+        one_sided_(p.boolean("one_sided")),
+        pressure_wanted_(p.boolean("pressure")) {}
 
   std::vector<Stage> stages() const override {
     return {Stage::predict, Stage::constraints, Stage::velocity_update};
@@ -44,6 +73,14 @@ class PositionBasedFluid : public Fix {
   void init(Simulation& sim) override {
     auto& P = sim.particles();
     lambda_ = P.declare({"lambda", 1, "PBF constraint multiplier lambda (m^2)", false});
+    // The pressure costs a store per particle and iteration and a field: only when wanted.
+    keep_pressure_ = pressure_wanted_ || computes_read_pressure(sim);
+    if (keep_pressure_) {
+      pressure_ = P.declare(
+          {"pressure", 1, "pressure from the constraint, -kappa rho0/dt^2 sum of lambda over the step (Pa)", false});
+      kappa_ = spiky_gradient_norm(P.mean_mass(), sim.kernels(), sim.rest_density());
+      first_wall_ = lattice_wall_density(P.mean_mass(), sim.kernels(), sim.rest_density());
+    }
     S0_ = lattice_gradient_sum(P.mean_mass(), sim.kernels(), sim.rest_density());
     scorr_w_ = sim.kernels().poly6(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
   }
@@ -67,7 +104,7 @@ class PositionBasedFluid : public Fix {
     }
   }
 
-  void constraint(Simulation& sim, int /*iteration*/) override {
+  void constraint(Simulation& sim, int iteration) override {
     auto& P = sim.particles();
     const auto& grid = sim.neighbors();
     const Kernels& K = sim.kernels();
@@ -81,6 +118,8 @@ class PositionBasedFluid : public Fix {
     real *x = P.x(), *y = P.y(), *z = P.z();
     const real* m = P.mass();
     real* lambda = P.data(lambda_);
+    real* pressure = keep_pressure_ ? P.data(pressure_) : nullptr;
+    const real to_pressure = real(-kappa_) * rho0 * inv_dt * inv_dt, inv_first_wall = real(1 / first_wall_);
     const auto& walls = sim.density_boundaries();
     for (auto& c : dp_) c.resize(n);
     wall_grad_.resize(3 * walls.size());
@@ -99,6 +138,7 @@ class PositionBasedFluid : public Fix {
         gi[2] += g * dz;
         sum_sq += g * g * r2;
       });
+      const real fluid_rho = rho;
       // Each wall's gradient, kept for the correction pass (the positions do not change in between).
       for (std::size_t b = 0; b < walls.size(); ++b) {
         real wall_grad[3] = {0, 0, 0};
@@ -111,6 +151,11 @@ class PositionBasedFluid : public Fix {
       real C = rho * inv_rho0 - 1;
       if (one_sided_ && C < 0) C = 0;
       lambda[i] = -C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
+      if (pressure) {
+        // Next to a wall the particle's multiplier does the wall's share too (see the top).
+        const real share = std::min(real(1), (rho - fluid_rho) * inv_first_wall);
+        pressure[i] = (iteration == 0 ? 0 : pressure[i]) + to_pressure * lambda[i] / (1 + share);
+      }
     }
 
     real *dpx = dp_[0].data(), *dpy = dp_[1].data(), *dpz = dp_[2].data();
@@ -173,10 +218,10 @@ class PositionBasedFluid : public Fix {
   double epsilon_, k_;
   int n_;
   double dq_;
-  bool one_sided_;
-  double S0_ = 1;
+  bool one_sided_, pressure_wanted_, keep_pressure_ = false;
+  double S0_ = 1, kappa_ = 1, first_wall_ = 1;
   real scorr_w_ = 1;
-  FieldId lambda_ = 0;
+  FieldId lambda_ = 0, pressure_ = 0;
   std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
   std::vector<real> dp_[3];    // corrections of one iteration
   std::vector<std::vector<real>> wall_grad_;  // each wall's density gradient (3 arrays per wall), within an iteration
@@ -198,7 +243,9 @@ void register_pbf(StyleRegistry& r) {
           ParamSpec{"scorr_n", ParamType::Integer, std::int64_t{4}, "", "artificial pressure exponent n"}.within(1, 16),
           ParamSpec{"scorr_dq", ParamType::Real, 0.2, "h", "artificial pressure reference distance delta q, in units of h"}
               .above_within(0, 1),
-          {"one_sided", ParamType::Bool, true, "", "constrain only compression, C = max(rho/rho0 - 1, 0)"}},
+          {"one_sided", ParamType::Bool, true, "", "constrain only compression, C = max(rho/rho0 - 1, 0)"},
+          {"pressure", ParamType::Bool, false, "",
+           "keep the field 'pressure' (Pa) from the multipliers, for dumps (a pressure probe turns it on)"}},
          [](const std::string& id, const Params& p) { return std::make_unique<PositionBasedFluid>(id, p); },
          nullptr});
 }

@@ -74,6 +74,9 @@ class Wcsph : public Fix {
         std::copy(summed.begin(), summed.end(), rho);
       }
     }
+    // The pressure of the density the run starts from: the field is recomputed before each
+    // step reads it, but probes and dumps at the start of a run read it as it is.
+    pressure_from_density(sim, P.data(rho_), P.data(pressure_));
   }
 
   double signal_speed() const override { return c0_; }
@@ -86,7 +89,7 @@ class Wcsph : public Fix {
     const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *rho = P.data(rho_), *p = P.data(pressure_);
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
-    const real dt = real(sim.timestep()), rho0 = real(sim.rest_density());
+    const real dt = real(sim.timestep());
 
     const auto& walls = sim.density_boundaries();
     if (density_ == "summation") {
@@ -111,13 +114,7 @@ class Wcsph : public Fix {
     }
     check_density(sim, rho);
 
-    const real c2 = real(c0_ * c0_), b = real(sim.rest_density() * c0_ * c0_ / gamma_), gamma = real(gamma_);
-    const bool tait = eos_ == "tait", clamp = !keep_negative_;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      real pi = tait ? b * (std::pow(rho[i] / rho0, gamma) - 1) : c2 * (rho[i] - rho0);
-      p[i] = clamp && pi < 0 ? 0 : pi;
-    }
+    pressure_from_density(sim, rho, p);
 
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -149,6 +146,18 @@ class Wcsph : public Fix {
   void restore_state(ByteReader& r) override { c0_ = r.get<double>(); }
 
  private:
+  void pressure_from_density(const Simulation& sim, const real* rho, real* p) const {
+    const std::size_t n = sim.particles().size();
+    const real rho0 = real(sim.rest_density());
+    const real c2 = real(c0_ * c0_), b = real(sim.rest_density() * c0_ * c0_ / gamma_), gamma = real(gamma_);
+    const bool tait = eos_ == "tait", clamp = !keep_negative_;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      real pi = tait ? b * (std::pow(rho[i] / rho0, gamma) - 1) : c2 * (rho[i] - rho0);
+      p[i] = clamp && pi < 0 ? 0 : pi;
+    }
+  }
+
   // The weakly compressible assumption broken: stop before the pressure explodes.
   void check_density(const Simulation& sim, const real* rho) const {
     const std::size_t n = sim.particles().size();

@@ -19,6 +19,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_dump_image(r);
   register_dump_movie(r);
   register_restart(r);
+  register_sample(r);
   register_compute_density(r);
   register_compute_density_error(r);
   register_compute_kinetic_energy(r);
@@ -27,6 +28,8 @@ void register_builtin_styles(StyleRegistry& r) {
   register_compute_extent(r);
   register_compute_front(r);
   register_compute_load(r);
+  register_compute_probe(r);
+  register_compute_gauge(r);
 }
 
 }  // namespace pbf

@@ -32,6 +32,7 @@ void register_wcsph(StyleRegistry&);
 void register_sph_viscosity(StyleRegistry&);
 void register_leapfrog(StyleRegistry&);
 void register_cfl(StyleRegistry&);
+void register_sample(StyleRegistry&);
 
 void register_compute_density(StyleRegistry&);
 void register_compute_density_error(StyleRegistry&);
@@ -41,5 +42,7 @@ void register_compute_count(StyleRegistry&);
 void register_compute_extent(StyleRegistry&);
 void register_compute_front(StyleRegistry&);
 void register_compute_load(StyleRegistry&);
+void register_compute_probe(StyleRegistry&);
+void register_compute_gauge(StyleRegistry&);
 
 }  // namespace pbf

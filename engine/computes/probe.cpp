@@ -1,0 +1,114 @@
+// probe: pressure, velocity or density at fixed points, SPH-interpolated with Shepard's
+// normalisation (the kernel sum in the denominator):
+//
+//   A(x) = sum_j V_j A_j W(x - x_j) / sum_j V_j W(x - x_j),   V_j = m_j / rho0,  W = poly6
+//
+// over the particles j within h of x. The normalisation makes a probe that sees only part of
+// a full neighbourhood (near the free surface, on a wall: an obstacle's pressure sensor) the
+// weighted mean of the particles it sees, instead of a sum short of the empty part of the
+// kernel. V_j = m_j / rho0 rather than m_j / rho_j: the summed density is low at a free
+// surface only because the kernel misses neighbours there, which would overweight surface
+// particles; with uniform masses V cancels anyway. A probe with no particle within h reads 0
+// (dry).
+//
+// A is the solver's "pressure" field (gauge pressure, 0 at a free surface: wcsph's equation
+// of state, pbf's from its multipliers, docs/physics.md "Pressure in PBF"), the velocity, or
+// the density the solver uses (Simulation::solver_density). Each point's sum runs serially in
+// the fixed order of PointQuery, so the values have the same bits at any thread count.
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/registry/builtin_styles.hpp"
+#include "engine/sph/point_query.hpp"
+
+namespace pbf {
+
+namespace {
+
+class Probe : public Compute {
+ public:
+  Probe(const std::string& id, const Params& p)
+      : Compute(id, "probe"), points_(p.points("points")), field_(p.string("field")) {
+    const auto labels = point_labels(p, points_.size());
+    const bool labelled = p.has("labels");
+    // Names: the label itself for a scalar field when labels are given (a sensor's name),
+    // else the field's symbol and the point's number; '.' is thermo's separator, hence "_vx".
+    for (const auto& label : labels) {
+      if (field_ == "velocity") {
+        for (const char* c : {"vx", "vy", "vz"})
+          names_.push_back(labelled ? fmt::format("{}_{}", label, c) : fmt::format("{}{}", c, label));
+      } else {
+        names_.push_back(labelled ? label : (field_ == "pressure" ? "p" : "rho") + label);
+      }
+    }
+  }
+
+  std::vector<std::string> names() const override { return names_; }
+  bool reads_pressure() const { return field_ == "pressure"; }
+
+  void evaluate(Simulation& sim, std::vector<double>& values) override {
+    check_points_inside(points_, sim.domain(), fmt::format("compute '{}' ({})", id(), style()));
+    const auto& P = sim.particles();
+    const real* a[3] = {nullptr, nullptr, nullptr};
+    int components = 1;
+    if (field_ == "velocity") {
+      a[0] = P.vx(), a[1] = P.vy(), a[2] = P.vz();
+      components = 3;
+    } else if (field_ == "density") {
+      a[0] = sim.solver_density();
+    } else {
+      const auto pressure = P.find("pressure");
+      if (!pressure)
+        throw Error(fmt::format("compute '{}' (probe): parameter 'field' is \"pressure\", but no fix keeps a "
+                                "pressure field (pbf and wcsph declare one when a run starts: run first)",
+                                id()));
+      a[0] = P.data(*pressure);
+    }
+    const Kernels& K = sim.kernels();
+    const real* m = P.mass();
+    const PointQuery query(P.x(), P.y(), P.z(), P.size(), sim.domain(), sim.kernel_radius());
+    const std::size_t n = points_.size();
+    values.assign(n * static_cast<std::size_t>(components), 0.0);
+#pragma omp parallel for schedule(dynamic)
+    for (std::size_t k = 0; k < n; ++k) {
+      double weight = 0, sum[3] = {0, 0, 0};
+      query.for_each_near(points_[k][0], points_[k][1], points_[k][2],
+                          [&](std::uint32_t j, double, double, double, double r2) {
+                            const double w = double(m[j]) * K.poly6(real(r2));  // rho0 V_j W
+                            weight += w;
+                            for (int c = 0; c < components; ++c) sum[c] += w * a[c][j];
+                          });
+      if (weight > 0)  // else dry: 0
+        for (int c = 0; c < components; ++c) values[k * components + c] = sum[c] / weight;
+    }
+  }
+
+ private:
+  Points points_;
+  std::string field_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace
+
+bool computes_read_pressure(const Simulation& sim) {
+  for (const auto& c : sim.computes())
+    if (const auto* probe = dynamic_cast<const Probe*>(c.get()); probe && probe->reads_pressure()) return true;
+  return false;
+}
+
+void register_compute_probe(StyleRegistry& r) {
+  r.add({"probe",
+         StyleKind::compute,
+         "pressure (Pa), velocity (m/s) or density (kg/m^3) at points, kernel-interpolated (Shepard)",
+         {{"points", ParamType::PointList, std::nullopt, "m", "the probe points {{x, y, z}, ...} (inside the domain)"},
+          ParamSpec{"field", ParamType::String, std::string("pressure"), "",
+                    "what to sample: pressure (gauge, the solver's), velocity, density (the solver's)"}
+              .one_of({"pressure", "velocity", "density"}),
+          ParamSpec{"labels", ParamType::StringList, std::nullopt, "",
+                    "one name per point (default: the values are p1.., rho1.., vx1, vy1, vz1, ..)", true}},
+         nullptr, make_compute<Probe>()});
+}
+
+}  // namespace pbf

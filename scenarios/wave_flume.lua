@@ -1,0 +1,75 @@
+-- wave_flume.lua: a piston wavemaker in a narrow flume. Water d deep fills a flume 6 m long;
+-- at x = 0 a vertical paddle (a `solid` box driven by a Lua function) moves back and forth
+-- along x with stroke S (the full excursion) and period T, its amplitude ramped up over the
+-- first two periods so that it starts from rest. The waves run down the flume to a beach
+-- (a plane sloping 1:4 from x = 4.5 m) that breaks them, and gauges at x = 1, 1.5 and 2 m
+-- record the free surface every 0.01 s. Linear wavemaker theory (Ursell, Dean & Yu 1953;
+-- Dean & Dalrymple 1991, section 6.3) gives the wave height a piston makes in water of depth d:
+--   H / S = 2 (cosh 2kd - 1) / (sinh 2kd + 2kd),   omega^2 = g k tanh(kd).
+-- share/validation/wave_flume.py reads the gauges and compares the measured height with it.
+--
+--   pbfengine run scenarios/wave_flume.lua [-v period=1.0] [-v stroke=0.04] [-v depth=0.3]
+--                                          [-v spacing=0.01] [-v t_end=8] [-v out=out]
+--   pbfengine run scenarios/wave_flume.lua -v images=0.1   (pictures, out/image_*.png)
+--
+-- Variables: period (s, default 1.0), stroke (m, default 0.04), depth (m, default 0.3),
+-- spacing (m, default 0.01), width (m, default 4 spacings: a 2D-like flume), t_end (s,
+-- default 8), out (directory, default "out"; the gauges go to out/gauges.csv), solver
+-- ("pbf", the default, or "wcsph"); images, movie and vtk as in every scenario.
+local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
+package.path = here .. "../share/lua/?.lua;" .. package.path
+local g = 9.81
+local T = var.period or 1.0
+local S = var.stroke or 0.04
+local d = var.depth or 0.3
+local s = var.spacing or 0.01
+local W = var.width or 4 * s
+local t_end = var.t_end or 8
+local out = var.out or "out"
+local L, top = 6.0, 2 * d              -- the flume, and the domain's height
+local back = 0.1                       -- room behind the paddle's face (x < 0)
+local h = 2 * s
+local dt = var.dt or 0.2 * h / math.sqrt(g * d)   -- 0.2 h per step at the shallow-water wave speed
+
+pbf.domain{lo = {-back, 0, 0}, hi = {L, W, top}}
+pbf.kernel_radius(h)
+pbf.timestep(dt)
+local n = pbf.lattice{lo = {0, 0, 0}, hi = {L, W, d}, spacing = s}
+print(string.format("wave_flume: %d particles, spacing %.4g m, dt %.3g s, period %g s, stroke %g m, depth %g m", n,
+                    s, dt, T, S, d))
+
+pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
+if (var.solver or "pbf") == "wcsph" then
+  require("solvers").wcsph{}
+else
+  pbf.fix("pbf", "pbf", {iterations = var.iterations or 4})
+  if (var.xsph or 1) ~= 0 then pbf.fix("xsph", "xsph", {}) end
+end
+pbf.fix("walls", "box", {})
+
+-- The paddle: its face at x = X(t), X = (S/2) r(t) sin(2 pi t / T), r rising smoothly from 0 to
+-- 1 over the first two periods.
+local ramp_time = 2 * T
+local function paddle(t)
+  local r = t >= ramp_time and 1 or 0.5 * (1 - math.cos(math.pi * t / ramp_time))
+  return {translate = {0.5 * S * r * math.sin(2 * math.pi * t / T), 0, 0}}
+end
+-- It reaches beyond the domain's side walls, floor and top, so that no face of it lies along a
+-- domain face (a particle in such a corner would be pushed out along the wrong face).
+pbf.fix("paddle", "solid", {shape = "box", lo = {-back - S, -h, -h}, hi = {0, W + h, top + h}, motion = paddle})
+-- The beach: a plane rising 1 in 4 from the floor at x = 4.5 m (the fluid above it).
+pbf.fix("beach", "solid", {shape = "plane", point = {4.5, 0, 0}, normal = {-1, 0, 4}, friction = 20})
+
+local stations = {1.0, 1.5, 2.0}
+local feet, labels = {}, {}
+for k, x in ipairs(stations) do
+  feet[k] = {x, 0.5 * W, 0}
+  labels[k] = string.format("x%03d", math.floor(100 * x + 0.5))  -- x100: the gauge at x = 1.00 m
+end
+pbf.compute("eta", "gauge", {points = feet, labels = labels})
+pbf.fix("gauges", "sample", {computes = {"eta"}, interval = 0.01, file = out .. "/gauges.csv"})
+
+require("outputs").add(out, {color = "speed", min = 0, max = 0.3, direction = {0.3, 1.5, -0.4}})
+pbf.compute("v", "speed")
+pbf.thermo{every = math.max(1, math.floor(0.25 / dt)), columns = {"step", "time", "v.max", "eta.x100", "eta.x150"}}
+pbf.run_until(t_end)
