@@ -5,8 +5,8 @@
 
 Reads the gauges' CSV (time, one water depth per gauge, columns named eta.xNNN for the gauge at
 x = NNN/100 m), and for each gauge takes the waves (zero-down-crossing) from when the fully
-grown wave train has reached the gauge (x / c_g + 3 T: two periods of ramp, one to settle) to
-the end of the record, and compares their mean height with the piston transfer function
+grown wave train has reached the gauge (start + x / c_g + 3 T: the paddle's start, two periods
+of ramp, one to settle) to the end of the record, and compares their mean height with the piston transfer function
 
     H / S = 2 (cosh 2kd - 1) / (sinh 2kd + 2kd),   omega^2 = g k tanh(kd)
 
@@ -63,6 +63,7 @@ def main():
     ap.add_argument("--depth", type=float,
                     help="still-water depth (m; default: the mean level the first gauge records in its window, "
                          "which is the scenario's depth less the fluid's compression)")
+    ap.add_argument("--start", type=float, default=1.0, help="when the paddle started (s; the scenario's `start`)")
     ap.add_argument("--plot", help="write the gauge records with the theory's crest and trough to this PNG")
     args = ap.parse_args()
     import numpy as np
@@ -76,7 +77,7 @@ def main():
         # wave record is the still level), found with the scenario's nominal depth first.
         x0 = int(header[1].split(".x")[-1]) / 100
         k0 = wavenumber(args.period, 0.3)
-        window = t >= x0 / group_velocity(args.period, k0, 0.3) + 3 * args.period
+        window = t >= args.start + x0 / group_velocity(args.period, k0, 0.3) + 3 * args.period
         args.depth = float(data[window, 1].mean()) if window.any() else 0.3
     k = wavenumber(args.period, args.depth)
     ratio = piston_height_over_stroke(k, args.depth)
@@ -91,7 +92,7 @@ def main():
     records = []
     for col, name in enumerate(header[1:], start=1):
         x = int(name.split(".x")[-1]) / 100
-        start = x / cg + 3 * args.period
+        start = args.start + x / cg + 3 * args.period
         heights = wave_heights(t, data[:, col], start)
         records.append((x, data[:, col], start))
         if not heights:
