@@ -23,6 +23,7 @@
 using namespace pbf;
 using pbf::test::read_file;
 using pbf::test::temp_dir;
+using pbf::test::read_csv;
 
 namespace {
 
@@ -45,22 +46,6 @@ void block(Simulation& sim, Vec3 dlo, Vec3 dhi, Vec3 lo, Vec3 hi, double s, Vec3
   add_lattice(sim, lo.data(), hi.data(), s, v.data());
 }
 
-// A CSV as columns by name.
-std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::stringstream hs(line);
-  for (std::string name; std::getline(hs, name, ',');) names.push_back(name);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    std::string cell;
-    for (std::size_t k = 0; k < names.size() && std::getline(ls, cell, ','); ++k) columns[names[k]].push_back(std::stod(cell));
-  }
-  return columns;
-}
 
 double mean(const std::vector<double>& v) {
   double s = 0;

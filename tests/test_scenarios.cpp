@@ -12,25 +12,10 @@
 
 using pbf::test::run_engine;
 using pbf::test::scenario;
+using pbf::test::read_csv;
 
 namespace {
 
-// A thermo CSV as columns by name.
-std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& path) {
-  std::istringstream in(pbf::test::read_file(path));
-  std::string line, name;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  for (std::istringstream h(line); std::getline(h, name, ',');) names.push_back(name);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    std::string cell;
-    for (std::size_t k = 0; std::getline(row, cell, ',') && k < names.size(); ++k)
-      columns[names[k]].push_back(std::stod(cell));
-  }
-  return columns;
-}
 
 }  // namespace
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -127,6 +128,28 @@ std::string error_of(F f) {
     return e.what();
   }
   return "";
+}
+
+
+// A CSV with a header line (thermo, probes) as columns by name, with the header's names in
+// order in `names` when asked; lines before the header that start with '#' are skipped.
+inline std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& path,
+                                                         std::vector<std::string>* names = nullptr) {
+  std::istringstream in(read_file(path));
+  std::string line, name;
+  do std::getline(in, line);
+  while (in && (line.empty() || line[0] == '#'));
+  std::vector<std::string> header;
+  for (std::istringstream h(line); std::getline(h, name, ',');) header.push_back(name);
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::string cell;
+    for (std::size_t k = 0; std::getline(row, cell, ',') && k < header.size(); ++k)
+      columns[header[k]].push_back(std::stod(cell));
+  }
+  if (names) *names = header;
+  return columns;
 }
 
 }  // namespace pbf::test

@@ -21,6 +21,7 @@
 using pbf::test::read_file;
 using pbf::test::run_engine;
 using pbf::test::scenario;
+using pbf::test::read_csv;
 using pbf::test::temp_dir;
 using pbf::test::write_file;
 
@@ -49,22 +50,6 @@ pbf::test::Result run_column(const std::filesystem::path& dir, const std::string
   return run_engine("run " + (dir / "a.lua").string() + " -v share=" + kShare + " -v dir=" + dir.string() + vars);
 }
 
-// A thermo CSV as columns by name.
-std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::string header, line;
-  std::getline(in, header);
-  std::vector<std::string> names;
-  std::stringstream hs(header);
-  for (std::string name; std::getline(hs, name, ',');) names.push_back(name);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    std::string cell;
-    for (std::size_t k = 0; k < names.size() && std::getline(ls, cell, ','); ++k) columns[names[k]].push_back(std::stod(cell));
-  }
-  return columns;
-}
 
 TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
   const auto dir = temp_dir("wcsph-column");
