@@ -256,44 +256,34 @@ def main():
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     os.makedirs(args.out_dir, exist_ok=True)
 
-    fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
-    for ax, (lab, col, x, wet) in zip(axes.flat, GAUGES):
-        ax.plot(tm[keep], meas[col][keep], color="k", lw=1.4, label="measured (MARIN)")
-        for k, r in enumerate(runs):
-            if "H." + lab in r["sim"]:
-                m = r["t"] <= t_max
-                ax.plot(r["t"][m], r["sim"]["H." + lab][m], color=colors[k % len(colors)], lw=1, label=r["label"])
-        ax.set_title(f"water height at x = {x} m" + (" (reservoir)" if wet else ""))
-        ax.set_ylabel("height (m)")
-        ax.grid(alpha=0.3)
-    for ax in axes[1]:
-        ax.set_xlabel("t (s)")
-    axes.flat[0].legend(fontsize=8)
-    fig.suptitle("SPHERIC Test 2: water heights")
-    fig.tight_layout()
-    fig.savefig(os.path.join(args.out_dir, "spheric_heights.png"), dpi=110)
-    plt.close(fig)
+    def four_panels(panels, sim_prefix, t_lo, scale, lw_measured, lw_sim, ylabel, title, name):
+        """A 2 x 2 figure: per panel (label, measured column, title), the measurement in black
+        and each run's column sim_prefix + label, over t_lo <= t <= t_max, divided by scale."""
+        fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
+        for ax, (lab, col, panel_title) in zip(axes.flat, panels):
+            m = keep & (tm >= t_lo)
+            ax.plot(tm[m], meas[col][m] / scale, color="k", lw=lw_measured, label="measured (MARIN)")
+            for k, r in enumerate(runs):
+                if sim_prefix + lab in r["sim"]:
+                    m = (r["t"] <= t_max) & (r["t"] >= t_lo)
+                    ax.plot(r["t"][m], r["sim"][sim_prefix + lab][m] / scale, color=colors[k % len(colors)],
+                            lw=lw_sim, label=r["label"])
+            ax.set_title(panel_title)
+            ax.set_ylabel(ylabel)
+            ax.grid(alpha=0.3)
+        for ax in axes[1]:
+            ax.set_xlabel("t (s)")
+        axes.flat[0].legend(fontsize=8)
+        fig.suptitle(title)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out_dir, name), dpi=110)
+        plt.close(fig)
 
-    fig, axes = plt.subplots(2, 2, figsize=(11, 7), sharex=True)
-    t_lo = 0.3
-    for ax, (lab, col) in zip(axes.flat, PRESSURES):
-        m = keep & (tm >= t_lo)
-        ax.plot(tm[m], meas[col][m] / 1000, color="k", lw=1.2, label="measured (MARIN)")
-        for k, r in enumerate(runs):
-            if "P." + lab in r["sim"]:
-                m = (r["t"] <= t_max) & (r["t"] >= t_lo)
-                ax.plot(r["t"][m], r["sim"]["P." + lab][m] / 1000, color=colors[k % len(colors)], lw=0.9,
-                        label=r["label"])
-        ax.set_title(f"pressure {lab}")
-        ax.set_ylabel("p (kPa)")
-        ax.grid(alpha=0.3)
-    for ax in axes[1]:
-        ax.set_xlabel("t (s)")
-    axes.flat[0].legend(fontsize=8)
-    fig.suptitle("SPHERIC Test 2: pressures on the box's front face")
-    fig.tight_layout()
-    fig.savefig(os.path.join(args.out_dir, "spheric_pressures.png"), dpi=110)
-    plt.close(fig)
+    four_panels([(lab, col, f"water height at x = {x} m" + (" (reservoir)" if wet else ""))
+                 for lab, col, x, wet in GAUGES], "H.", -math.inf, 1, 1.4, 1, "height (m)",
+                "SPHERIC Test 2: water heights", "spheric_heights.png")
+    four_panels([(lab, col, f"pressure {lab}") for lab, col in PRESSURES], "P.", 0.3, 1000, 1.2, 0.9, "p (kPa)",
+                "SPHERIC Test 2: pressures on the box's front face", "spheric_pressures.png")
 
     # The impact on P1, close up: raw samples (thin) and the 5 ms running mean (thick).
     fig, ax = plt.subplots(figsize=(8, 4.5))
