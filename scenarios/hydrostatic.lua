@@ -5,8 +5,9 @@
 --   pbfengine run scenarios/hydrostatic.lua [-v particles=8000] [-v t_end=2] [-v csv=FILE]
 --
 -- Variables: particles (about how many, default 8000), t_end (simulated seconds, default
--- 2), height (column height in m, default 0.4; the footprint is height/2 square),
--- iterations, one_sided, wall_density and scorr_k (default: the styles' defaults, see
+-- 2), height (column height in m, default 0.4), width (side of the square footprint in m,
+-- default height/2),
+-- iterations, epsilon, one_sided, wall_density and scorr_k (default: the styles' defaults, see
 -- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
 -- csv (thermo CSV file, default none), out (frame directory, default none), solver ("pbf",
 -- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha).
@@ -20,7 +21,7 @@ end
 local N = var.particles or 8000
 local t_end = var.t_end or 2.0
 local H = var.height or 0.4
-local W = H / 2
+local W = var.width or H / 2
 local s = (W * W * H / N) ^ (1 / 3)        -- lattice spacing
 s = W / math.floor(W / s + 0.5)             -- a whole number of layers across
 local h = 2 * s                             -- kernel radius
@@ -35,7 +36,7 @@ pbf.fix("gravity", "gravity", {})
 if (var.solver or "pbf") == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, density = var.density, fixed_dt = var.fixed_dt}
 else
-  pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
+  pbf.fix("pbf", "pbf", {iterations = var.iterations, epsilon = var.epsilon, relaxation = var.relaxation, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 end
 if (var.walls or "box") == "box" then

@@ -85,17 +85,17 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
   }
   ASSERT_GE(frames, 20);  // 21 unless the last falls just after 1.0 s (frames count from the dump's start)
   const double surface = top / frames + s / 2, scale = rho0 * g * surface;
-  // Bound: 8% of the floor pressure. Measured: 5-6%. The SPH pressure gradient with
-  // a support of two spacings is not exact (the lattice sum of x gradW is 0.97 of the
-  // identity, and the layers are not a lattice after the transient), so the column settles
-  // with a somewhat steeper pressure gradient than rho0 g; averaging 20 frames leaves about
-  // 1% of acoustic noise.
+  // Bound: 16% of the floor pressure. Measured: 13-15% (5-6% when the density was summed
+  // with poly6, whose pressure force was not conservative). The SPH pressure gradient with a
+  // support of two spacings is not exact (the layers are not a lattice after the transient),
+  // so the column settles with a steeper pressure gradient than rho0 g (docs/physics.md,
+  // "Known limits of WCSPH"); averaging 20 frames leaves about 1% of acoustic noise.
   int checked = 0;
   for (int layer = 0; layer < 30; ++layer) {
     const double z = (layer + 0.5) * 0.01;
     if (count[layer] == 0 || z < h || z > surface - h) continue;
     const double expected = rho0 * g * (surface - z), measured = sum[layer] / count[layer];
-    EXPECT_NEAR(measured, expected, 0.08 * scale) << "layer at z = " << z;
+    EXPECT_NEAR(measured, expected, 0.16 * scale) << "layer at z = " << z;
     ++checked;
   }
   EXPECT_GE(checked, 14);

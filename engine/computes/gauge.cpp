@@ -2,7 +2,7 @@
 // is the foot of a vertical line up to the domain top; along it, the kernel-normalised fluid
 // fraction
 //
-//   f(z) = sum_j V_j W((x, y, z) - x_j),   V_j = m_j / rho0,  W = poly6
+//   f(z) = sum_j V_j W((x, y, z) - x_j),   V_j = m_j / rho0,  W the kernel (Wendland C2)
 //
 // is 1 inside the fluid (the mass rule makes sum_j m_j W = rho0 for a full neighbourhood)
 // and 1/2 on a flat free surface, which lies half a spacing above the top particles' centres.
@@ -58,7 +58,7 @@ class Gauge : public Compute {
       auto fraction = [&](double z) {
         double f = 0;
         query.for_each_near(x, y, z, [&](std::uint32_t j, double, double, double, double r2) {
-          f += double(m[j]) * inv_rho0 * K.poly6(real(r2));
+          f += double(m[j]) * inv_rho0 * K.W(real(r2));
         });
         if (walls.empty()) return f;
         real wall = 0, grad[3] = {0, 0, 0};

@@ -1,7 +1,7 @@
 // probe: pressure, velocity or density at fixed points, SPH-interpolated with Shepard's
 // normalisation (the kernel sum in the denominator):
 //
-//   A(x) = sum_j V_j A_j W(x - x_j) / sum_j V_j W(x - x_j),   V_j = m_j / rho0,  W = poly6
+//   A(x) = sum_j V_j A_j W(x - x_j) / sum_j V_j W(x - x_j),   V_j = m_j / rho0,  W the kernel (Wendland C2)
 //
 // over the particles j within h of x. The normalisation makes a probe that sees only part of
 // a full neighbourhood (near the free surface, on a wall: an obstacle's pressure sensor) the
@@ -75,7 +75,7 @@ class Probe : public Compute {
       double weight = 0, sum[3] = {0, 0, 0};
       query.for_each_near(points_[k][0], points_[k][1], points_[k][2],
                           [&](std::uint32_t j, double, double, double, double r2) {
-                            const double w = double(m[j]) * K.poly6(real(r2));  // rho0 V_j W
+                            const double w = double(m[j]) * K.W(real(r2));  // rho0 V_j W
                             weight += w;
                             for (int c = 0; c < components; ++c) sum[c] += w * a[c][j];
                           });

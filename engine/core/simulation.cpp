@@ -28,8 +28,11 @@ void Simulation::set_domain(const Domain& domain) {
 void Simulation::set_kernel_radius(double h) {
   if (!(h > 0) || !std::isfinite(h)) throw Error(fmt::format("kernel radius h must be positive, got {}", h));
   const Kernels kernels(h);
-  if (!std::isfinite(kernels.poly6_coef) || !(kernels.poly6_coef > 0) || !std::isfinite(kernels.spiky_coef))
-    throw Error(fmt::format("kernel radius h = {} m: the kernels' coefficients (315 / (64 pi h^9)) are beyond the {} "
+  const real gradient_coef = kernels.coef * kernels.inv_h * kernels.inv_h;
+  if (!std::isfinite(kernels.coef) || !(kernels.coef > 0) || !std::isfinite(gradient_coef) || !(gradient_coef > 0) ||
+      !(kernels.h2 > 0))
+    throw Error(fmt::format("kernel radius h = {} m: the kernel's coefficients (21 / (2 pi h^3), over h^2 for the "
+                            "gradient) are beyond the {} "
                             "precision of the particle data; choose a unit in which h is nearer 1",
                             h, sizeof(real) == 4 ? "single" : "double"));
   // Particles made for another h (pbf.kernel_radius after pbf.lattice): checked against it now.
@@ -224,8 +227,8 @@ const std::vector<real>& Simulation::summed_density() {
   for (DensityBoundary* b : boundaries_) b->prepare(*this);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    real rho = m[i] * K.poly6(0);
-    grid_.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) { rho += m[j] * K.poly6(r2); });
+    real rho = m[i] * K.W(0);
+    grid_.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) { rho += m[j] * K.W(r2); });
     real grad[3] = {0, 0, 0};
     for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], rho, grad);
     density_[i] = rho;

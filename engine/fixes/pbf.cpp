@@ -12,7 +12,7 @@
 //
 // Pressure (docs/physics.md, "Pressure in PBF"): a pressure p moves particle i in one step by
 // dt^2 a_i = -dt^2/rho0^2 sum_j m_j (p_i + p_j) gradW_ij; the iterations move it by
-// 1/rho0 sum_j m_j (lambda_i + lambda_j) gradW_ij each; and the spiky SPH gradient of a
+// 1/rho0 sum_j m_j (lambda_i + lambda_j) gradW_ij each; and the SPH gradient of a
 // linear field on the initial lattice is kappa times its gradient (kappa = 0.947 at h = 2s),
 // so the pressure whose gradient moves the fluid so is
 //   p_i = -kappa rho0 / dt^2 sum_iterations lambda_i / (1 + min(1, rho_wall,i / rho_wall,1))
@@ -35,8 +35,8 @@ namespace pbf {
 namespace {
 
 // kappa = -1/3 sum_j V_j g(r_j) r_j^2 over the lattice of the particles' mean mass, V_j = m / rho0
-// and gradW = g(r) r_vec (spiky): sum_j V_j (p_j - p_i) gradW_ij = kappa grad p for a linear p.
-double spiky_gradient_norm(double mass, const Kernels& K, double rho0) {
+// and gradW = g(r) r_vec: sum_j V_j (p_j - p_i) gradW_ij = kappa grad p for a linear p.
+double gradient_norm(double mass, const Kernels& K, double rho0) {
   const double s = lattice_spacing(mass, K, rho0), h = K.h;
   const int reach = static_cast<int>(std::ceil(h / s));
   double sum = 0;
@@ -44,7 +44,7 @@ double spiky_gradient_norm(double mass, const Kernels& K, double rho0) {
     for (int j = -reach; j <= reach; ++j)
       for (int i = -reach; i <= reach; ++i) {
         const double r2 = (i * i + j * j + k * k) * s * s;
-        if (r2 < h * h) sum += K.spiky_grad_factor(real(r2)) * r2;
+        if (r2 < h * h) sum += K.grad_factor(real(r2)) * r2;
       }
   return -mass / rho0 * sum / 3;
 }
@@ -59,6 +59,7 @@ class PositionBasedFluid : public Fix {
         n_(static_cast<int>(p.integer("scorr_n"))),
         dq_(p.real("scorr_dq")),
         one_sided_(p.boolean("one_sided")),
+        omega_(p.real("relaxation")),
         pressure_wanted_(p.boolean("pressure")) {}
 
   std::vector<Stage> stages() const override {
@@ -78,11 +79,11 @@ class PositionBasedFluid : public Fix {
     if (keep_pressure_) {
       pressure_ = P.declare(
           {"pressure", 1, "pressure from the constraint, -kappa rho0/dt^2 sum of lambda over the step (Pa)", false});
-      kappa_ = spiky_gradient_norm(P.mean_mass(), sim.kernels(), sim.rest_density());
+      kappa_ = gradient_norm(P.mean_mass(), sim.kernels(), sim.rest_density());
       first_wall_ = lattice_wall_density(P.mean_mass(), sim.kernels(), sim.rest_density());
     }
     S0_ = lattice_gradient_sum(P.mean_mass(), sim.kernels(), sim.rest_density());
-    scorr_w_ = sim.kernels().poly6(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
+    scorr_w_ = sim.kernels().W(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
   }
 
   void predict(Simulation& sim) override {
@@ -127,12 +128,14 @@ class PositionBasedFluid : public Fix {
 
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      real rho = m[i] * K.poly6(0);
+      real rho = m[i] * K.W(0);
       real gi[3] = {0, 0, 0};
       real sum_sq = 0;
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-        rho += m[j] * K.poly6(r2);
-        const real g = m[j] * inv_rho0 * K.spiky_grad_factor(r2);  // grad_j C_i = -g r_ij
+        real w, gw;
+        K.W_and_grad_factor(r2, w, gw);
+        rho += m[j] * w;
+        const real g = m[j] * inv_rho0 * gw;  // grad_j C_i = -g r_ij
         gi[0] += g * dx;
         gi[1] += g * dy;
         gi[2] += g * dz;
@@ -150,7 +153,7 @@ class PositionBasedFluid : public Fix {
       }
       real C = rho * inv_rho0 - 1;
       if (one_sided_ && C < 0) C = 0;
-      lambda[i] = -C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
+      lambda[i] = -real(omega_) * C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
       if (pressure) {
         // Next to a wall the particle's multiplier does the wall's share too (see the top).
         const real share = std::min(real(1), (rho - fluid_rho) * inv_first_wall);
@@ -165,12 +168,12 @@ class PositionBasedFluid : public Fix {
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
         real s = 0;
         if (scorr_scale > 0) {
-          const real ratio = K.poly6(r2) * inv_wdq;
+          const real ratio = K.W(r2) * inv_wdq;
           real p = ratio;
           for (int e = 1; e < n_; ++e) p *= ratio;
           s = -scorr_scale * p;
         }
-        const real g = m[j] * inv_rho0 * (lambda[i] + lambda[j] + s) * K.spiky_grad_factor(r2);
+        const real g = m[j] * inv_rho0 * (lambda[i] + lambda[j] + s) * K.grad_factor(r2);
         d[0] += g * dx;
         d[1] += g * dy;
         d[2] += g * dz;
@@ -218,7 +221,9 @@ class PositionBasedFluid : public Fix {
   double epsilon_, k_;
   int n_;
   double dq_;
-  bool one_sided_, pressure_wanted_, keep_pressure_ = false;
+  bool one_sided_;
+  double omega_;
+  bool pressure_wanted_, keep_pressure_ = false;
   double S0_ = 1, kappa_ = 1, first_wall_ = 1;
   real scorr_w_ = 1;
   FieldId lambda_ = 0, pressure_ = 0;
@@ -242,6 +247,10 @@ void register_pbf(StyleRegistry& r) {
               .within(0, 1),
           ParamSpec{"scorr_n", ParamType::Integer, std::int64_t{4}, "", "artificial pressure exponent n"}.within(1, 16),
           ParamSpec{"scorr_dq", ParamType::Real, 0.2, "h", "artificial pressure reference distance delta q, in units of h"}
+              .above_within(0, 1),
+          ParamSpec{"relaxation", ParamType::Real, 1.0, "",
+                    "Jacobi relaxation omega, scales lambda (below 0.77 the iterations converge on the bulk lattice; "
+                    "see docs)"}
               .above_within(0, 1),
           {"one_sided", ParamType::Bool, true, "", "constrain only compression, C = max(rho/rho0 - 1, 0)"},
           {"pressure", ParamType::Bool, false, "",

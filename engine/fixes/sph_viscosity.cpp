@@ -54,7 +54,7 @@ class SphViscosity : public Fix {
       real a[3] = {0, 0, 0};
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
         const real ux = vx[i] - vx[j], uy = vy[i] - vy[j], uz = vz[i] - vz[j];
-        const real g = K.wendland_grad_factor(r2);  // gradW = g x_ij
+        const real g = K.grad_factor(r2);  // gradW = g x_ij
         if (artificial) {
           const real vr = ux * dx + uy * dy + uz * dz;
           if (vr >= 0) return;  // separating: no artificial viscosity

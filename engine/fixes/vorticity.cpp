@@ -47,7 +47,7 @@ class VorticityConfinement : public Fix {
       const real wi = magnitude_[i];
       real eta[3] = {0, 0, 0};
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-        const real g = m[j] / rho[j] * (magnitude_[j] - wi) * K.spiky_grad_factor(r2);
+        const real g = m[j] / rho[j] * (magnitude_[j] - wi) * K.grad_factor(r2);
         eta[0] += g * dx;
         eta[1] += g * dy;
         eta[2] += g * dz;

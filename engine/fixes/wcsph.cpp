@@ -1,6 +1,6 @@
 // wcsph: the pressure of weakly compressible SPH (Monaghan 1994; Becker & Teschner 2007),
 // in the forces stage after the neighbour search:
-//   density     summation: rho_i = sum_j m_j W_poly6(x_ij) + walls (the density every style
+//   density     summation: rho_i = sum_j m_j W(x_ij) + walls (the density every style
 //               and compute of the engine uses, and the one the mass rule sets to rho0), or
 //               continuity: rho_i += dt sum_j m_j (v_i - v_j) . gradW_ij
 //   pressure    tait:   p = B ((rho/rho0)^gamma - 1),  B = rho0 c0^2 / gamma
@@ -101,7 +101,7 @@ class Wcsph : public Fix {
       for (std::size_t i = 0; i < n; ++i) {
         real sum = 0;
         grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-          const real g = K.wendland_grad_factor(r2);
+          const real g = K.grad_factor(r2);
           sum += m[j] * g * ((vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy + (vz[i] - vz[j]) * dz);
         });
         // Walls as mirrored fluid: the mirror image moves with the normal velocity reversed,
@@ -121,7 +121,7 @@ class Wcsph : public Fix {
       const real pi = p[i] / (rho[i] * rho[i]);
       real a[3] = {0, 0, 0};
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-        const real s = -m[j] * (pi + p[j] / (rho[j] * rho[j])) * K.wendland_grad_factor(r2);
+        const real s = -m[j] * (pi + p[j] / (rho[j] * rho[j])) * K.grad_factor(r2);
         a[0] += s * dx;
         a[1] += s * dy;
         a[2] += s * dz;

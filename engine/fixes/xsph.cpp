@@ -33,7 +33,7 @@ class XsphViscosity : public Fix {
     for (std::size_t i = 0; i < n; ++i) {
       real d[3] = {0, 0, 0};
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) {
-        const real w = m[j] / rho[j] * K.poly6(r2);
+        const real w = m[j] / rho[j] * K.W(r2);
         d[0] += w * (vx[j] - vx[i]);
         d[1] += w * (vy[j] - vy[i]);
         d[2] += w * (vz[j] - vz[i]);

@@ -150,11 +150,11 @@ double SolidMap::owned_d_eff(std::int64_t ix, std::int64_t iy, std::int64_t iz, 
 }
 
 
-// The stencil: W and grad_y W(y - x) = -6 coef (h^2 - r^2)^2 (y - x) averaged over each cell
-// (8^3 points), since W changes much across a cell near the edge of its support. Returns
-// the sum of the weights.
+// The stencil: W and grad_y W(y - x) = g(r) (y - x) averaged over each cell (8^3 points),
+// since W changes much across a cell near the edge of its support. Returns the sum of the
+// weights.
 double SolidMap::make_taps(const Kernels& kernels, std::vector<Tap>& taps) const {
-  const double c = cell_, h = kernels.h, h2 = h * h, coef = kernels.poly6_coef;
+  const double c = cell_, h = kernels.h, h2 = h * h;
   const int R = static_cast<int>(std::ceil(h / c)) + 1;
   constexpr int Q = 8;
   double S = 0;
@@ -168,9 +168,9 @@ double SolidMap::make_taps(const Kernels& kernels, std::vector<Tap>& taps) const
                                c * (z + (q / (Q * Q) + 0.5) / Q - 0.5)};
           const double r2 = o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
           if (r2 >= h2) continue;
-          const double u = h2 - r2;
-          t.w += coef * u * u * u / (Q * Q * Q);
-          for (int a = 0; a < 3; ++a) t.g[a] -= 6 * coef * u * u * o[a] / (Q * Q * Q);
+          t.w += double(kernels.W(real(r2))) / (Q * Q * Q);
+          const double g = kernels.grad_factor(real(r2));
+          for (int a = 0; a < 3; ++a) t.g[a] += g * o[a] / (Q * Q * Q);
         }
         if (t.w == 0) continue;
         S += t.w;

@@ -11,7 +11,7 @@
 // F is stored as the distance d_eff at which a flat wall gives it, f = f_plane(d_eff): on a
 // flat wall d_eff = d, a linear function that trilinear interpolation reproduces exactly (so
 // the map gives the analytic box there), and at edges, corners and curves d_eff stays smooth
-// where F itself, a ninth-degree polynomial of the distance, would not interpolate well.
+// where F itself, an eighth-degree polynomial of the distance, would not interpolate well.
 // grad f = f_plane'(d_eff) grad d_eff.
 //
 // Storage: bricks of 4^3 cells (5^3 nodes) only where |d| < h + a brick's reach; the others

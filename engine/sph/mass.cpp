@@ -28,7 +28,7 @@ void for_lattice_offsets(double spacing, double h, Visit&& visit) {
 double lattice_mass(double spacing, const Kernels& kernels, double rest_density) {
   double sum = 0;
   for_lattice_offsets(spacing, kernels.h, [&](double dx, double dy, double dz) {
-    sum += kernels.poly6(real(dx * dx + dy * dy + dz * dz));
+    sum += kernels.W(real(dx * dx + dy * dy + dz * dz));
   });
   return rest_density / sum;
 }
@@ -47,7 +47,7 @@ double lattice_wall_density(double mass, const Kernels& kernels, double rest_den
   const double spacing = lattice_spacing(mass, kernels, rest_density);
   double sum = 0;
   for_lattice_offsets(spacing, kernels.h, [&](double dx, double dy, double dz) {
-    if (dz < -0.5 * spacing) sum += mass * kernels.poly6(real(dx * dx + dy * dy + dz * dz));
+    if (dz < -0.5 * spacing) sum += mass * kernels.W(real(dx * dx + dy * dy + dz * dz));
   });
   return sum;
 }
@@ -57,7 +57,7 @@ double lattice_gradient_sum(double mass, const Kernels& kernels, double rest_den
   double gi[3] = {0, 0, 0}, sum_j = 0;
   for_lattice_offsets(spacing, kernels.h, [&](double dx, double dy, double dz) {
     const double r2 = dx * dx + dy * dy + dz * dz;
-    const double g = mass / rest_density * kernels.spiky_grad_factor(real(r2));
+    const double g = mass / rest_density * kernels.grad_factor(real(r2));
     gi[0] += g * dx;
     gi[1] += g * dy;
     gi[2] += g * dz;
@@ -86,8 +86,8 @@ MassEstimate mass_from_positions(const real* x, const real* y, const real* z, st
     if (away_from_faces(i)) most = std::max(most, grid.count(i));
   auto interior = [&](std::size_t i) { return away_from_faces(i) && grid.count(i) >= 0.95 * most; };
   auto kernel_sum = [&](std::size_t i) {
-    double s = kernels.poly6(0);
-    grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t, real, real, real, real r2) { s += kernels.poly6(r2); });
+    double s = kernels.W(0);
+    grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t, real, real, real, real r2) { s += kernels.W(r2); });
     return s;
   };
   const double count = deterministic_sum(n, [&](std::size_t i) { return interior(i) ? 1.0 : 0.0; });

@@ -17,7 +17,7 @@ void velocity_curl(Simulation& sim, const std::vector<real>& rho, real* wx, real
   for (std::size_t i = 0; i < n; ++i) {
     real w[3] = {0, 0, 0};
     grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-      const real g = m[j] / rho[j] * K.spiky_grad_factor(r2);
+      const real g = m[j] / rho[j] * K.grad_factor(r2);
       const real gx = g * dx, gy = g * dy, gz = g * dz;
       const real ux = vx[j] - vx[i], uy = vy[j] - vy[i], uz = vz[j] - vz[i];
       w[0] += gy * uz - gz * uy;

@@ -16,8 +16,7 @@ bool HalfSpaceWall::prepare(const Simulation& sim) {
   prepared_[1] = sim.kernel_radius();
   prepared_[2] = sim.rest_density();
   h_ = sim.kernels().h;
-  h2_ = h_ * h_;
-  scale_ = real(M_PI) * sim.kernels().poly6_coef / 4;
+  inv_h_ = 1 / h_;
   const double spacing = lattice_spacing(mass, sim.kernels(), sim.rest_density());
   const double missing = lattice_wall_density(mass, sim.kernels(), sim.rest_density()) / sim.rest_density();
   // f falls with the distance: bisect for the delta at which the first layer misses `missing`.

@@ -1,9 +1,10 @@
 #pragma once
 // The density a flat wall adds: the wall counts as fluid at rest density filling the
 // half-space behind it. For a particle at distance d < h from the wall, that fluid's share
-// of the poly6 kernel is
-//   f(d) = integral over {z > d + delta} of W dV = pi c / 4 (F(h) - F(d + delta)),
-//   F(z) = integral (h^2 - z^2)^4 dz,   c = 315 / (64 pi h^9),
+// of the kernel (Wendland C2, engine/sph/kernels.hpp) is, with u = (d + delta) / h,
+//   f(d) = integral over {z > d + delta} of W dV = 2 pi integral_z^h W(r) r (r - z) dr
+//        = 1/2 - 3/2 u + 7/2 u^3 - 21/2 u^5 + 14 u^6 - 15/2 u^7 + 3/2 u^8,
+//   df/dd = 3 / (2h) (u - 1)^5 (8 u^2 + 5 u + 1),
 // with delta (a small fraction of the spacing) chosen so that a particle of the initial
 // lattice's first layer, half a spacing from the wall, sees exactly the density of the
 // lattice sites it misses. The box fix uses it for each face; a solid of any shape uses it
@@ -24,10 +25,11 @@ class HalfSpaceWall {
   // for d >= -delta; 1/2 closer than that), and df/dd in `slope` (<= 0).
   real fraction(real d, real& slope) const {
     const real z = d + delta_;
-    const real zd = z > 0 ? (z < h_ ? z : h_) : 0;
-    const real q = h2_ - zd * zd;
-    slope = z > 0 && z < h_ ? -scale_ * q * q * q * q : 0;
-    return scale_ * (F(h_) - F(zd));
+    const real u = z > 0 ? (z < h_ ? z * inv_h_ : 1) : 0;
+    const real v = u - 1, v2 = v * v;
+    slope = z > 0 && z < h_ ? real(1.5) * inv_h_ * v2 * v2 * v * (u * (8 * u + 5) + 1) : 0;
+    return real(0.5) +
+           u * (real(-1.5) + u * u * (real(3.5) + u * u * (real(-10.5) + u * (14 + u * (real(-7.5) + u * real(1.5))))));
   }
   // The same continued behind the wall's fluid surface (d < -delta), where the wall fills
   // more than half the neighbourhood: 1 - f of the mirror point. Strictly decreasing on
@@ -42,13 +44,7 @@ class HalfSpaceWall {
   real kernel_radius() const { return h_; }
 
  private:
-  real F(real z) const {
-    const real z2 = z * z, h2 = h2_;
-    return z * (h2 * h2 * h2 * h2 - z2 * (h2 * h2 * h2 * real(4.0 / 3) -
-                                          z2 * (h2 * h2 * real(6.0 / 5) - z2 * (h2 * real(4.0 / 7) - z2 / 9))));
-  }
-
-  real h_ = 0, h2_ = 0, scale_ = 0, delta_ = 0;
+  real h_ = 0, inv_h_ = 0, delta_ = 0;
   double prepared_[3] = {0, 0, 0};  // mass, h, rho0 that delta_ was computed for
 };
 
