@@ -2,9 +2,14 @@
 // its integrator: predict positions, iterate the constraint, velocities from positions.
 //
 //   C_i      = rho_i / rho0 - 1          (one-sided: max(C_i, 0))
-//   lambda_i = -C_i / (sum_k |grad_k C_i|^2 + epsilon S0)
+//   lambda_i = -omega C_i / (sum_k |grad_k C_i|^2 + epsilon S0)   (omega: `relaxation`)
 //   dp_i     = 1/rho0 sum_j m_j (lambda_i + lambda_j + s_corr) gradW_ij  + walls
 //   s_corr   = -k (W(r_ij) / W(dq h))^n / S0
+//
+// W and gradW are one kernel (Wendland C2): with poly6 densities and spiky gradients, as in
+// the paper, the corrections are not a projection and a fluid at rest gains energy
+// (docs/physics.md, "Kernels"). Linearised on the bulk lattice, one Jacobi iteration
+// multiplies a density mode by 1 - omega a(k) with a(k) up to 2.61: omega < 0.77 converges.
 //
 // S0 is sum_k |grad_k C_i|^2 for a particle at rest inside the initial lattice. Measuring
 // epsilon and s_corr in units of S0 makes them scale-free: the same parameters behave the
@@ -13,7 +18,7 @@
 // Pressure (docs/physics.md, "Pressure in PBF"): a pressure p moves particle i in one step by
 // dt^2 a_i = -dt^2/rho0^2 sum_j m_j (p_i + p_j) gradW_ij; the iterations move it by
 // 1/rho0 sum_j m_j (lambda_i + lambda_j) gradW_ij each; and the SPH gradient of a
-// linear field on the initial lattice is kappa times its gradient (kappa = 0.947 at h = 2s),
+// linear field on the initial lattice is kappa times its gradient (kappa = 0.950 at h = 2s),
 // so the pressure whose gradient moves the fluid so is
 //   p_i = -kappa rho0 / dt^2 sum_iterations lambda_i / (1 + min(1, rho_wall,i / rho_wall,1))
 // The last factor: a wall moves i by lambda_i / rho0 grad(rho_wall) (the wall has no lambda),
