@@ -7,7 +7,8 @@
 -- Variables: particles (about how many, default 8000), t_end (simulated seconds, default
 -- 2), height (column height in m, default 0.4), width (side of the square footprint in m,
 -- default height/2),
--- iterations, epsilon, one_sided, wall_density and scorr_k (default: the styles' defaults, see
+-- iterations, error (an accuracy target instead of a fixed count), max_iterations, relaxation,
+-- epsilon, one_sided, wall_density and scorr_k (default: the styles' defaults, see
 -- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
 -- csv (thermo CSV file, default none), out (frame directory, default none), solver ("pbf",
 -- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha).
@@ -36,7 +37,9 @@ pbf.fix("gravity", "gravity", {})
 if (var.solver or "pbf") == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, density = var.density, fixed_dt = var.fixed_dt}
 else
-  pbf.fix("pbf", "pbf", {iterations = var.iterations, epsilon = var.epsilon, relaxation = var.relaxation, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
+  pbf.fix("pbf", "pbf", {iterations = var.iterations, error = var.error, max_iterations = var.max_iterations,
+                         epsilon = var.epsilon, relaxation = var.relaxation, one_sided = flag(var.one_sided, true),
+                         scorr_k = var.scorr_k})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 end
 if (var.walls or "box") == "box" then
@@ -60,8 +63,12 @@ pbf.compute("top", "front", {axis = "z", percentile = 99})
 pbf.compute("box", "extent")
 -- WCSPH steps are set by the sound speed c0 = 10 sqrt(2 g H) (fix cfl), not by dt above
 local dt_typical = (var.solver or "pbf") == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * 9.81 * H)) or dt
-pbf.thermo{every = math.max(1, math.floor(0.1 / dt_typical)), csv = var.csv,
-           columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.avg", "v.max", "top", "box.zmin"}}
+local columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.avg", "v.max", "top", "box.zmin"}
+if (var.solver or "pbf") == "pbf" then  -- the constraint iterations per step, averaged over each line's steps
+  pbf.compute("it", "iterations")
+  columns[#columns + 1] = "it.avg"
+end
+pbf.thermo{every = math.max(1, math.floor(0.1 / dt_typical)), csv = var.csv, columns = columns}
 
 print(string.format("hydrostatic: %d particles, spacing %.4g m, h %.4g m, dt %.4g s", pbf.count(), s, h, dt))
 pbf.run_until(t_end)

@@ -37,8 +37,11 @@ class Fix {
 
   virtual std::vector<Stage> stages() const = 0;
   virtual Role role() const { return Role::other; }
-  // How many constraint iterations a step needs (the run takes the largest; at least 1).
+  // How many constraint iterations a step may take (the run takes the largest; at least 1).
   virtual int constraint_iterations() const { return 0; }
+  // After `done` iterations of this step: whether this fix needs no more. The step's
+  // iterations stop when every fix says so (an accuracy-driven solver stops early).
+  virtual bool constraints_done(int done) const { return done >= constraint_iterations(); }
   virtual bool needs_neighbors() const { return false; }
   // The fastest signal this fix's physics carries (a weakly compressible solver's sound
   // speed, m/s; 0: none): time-step control keeps dt below h over it.

@@ -255,7 +255,18 @@ void RunLoop::step() {
     if (most > 20 * full_neighborhood_ + 100) check_clumping();
   }
   run_stage(Stage::forces);
-  for (int it = 0; it < iterations_; ++it) run_stage(Stage::constraints, it);
+  int iterations = 0;
+  while (iterations < iterations_) {
+    run_stage(Stage::constraints, iterations);
+    ++iterations;
+    bool done = true;
+    for (const Hook& hook : hooks_[static_cast<int>(Stage::constraints)]) done = done && hook.fix->constraints_done(iterations);
+    if (done) break;
+  }
+  auto& report = sim_.solver_report_;
+  report.iterations = iterations;
+  report.iteration_sum += iterations;
+  ++report.steps;
   run_stage(Stage::velocity_update);
   run_stage(Stage::velocity_post);
 

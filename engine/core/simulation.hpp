@@ -115,6 +115,14 @@ class Simulation {
   // "density" field of a solver that keeps one (wcsph, summed or integrated), else the SPH
   // sum over freshly built lists. One value per particle, in memory order.
   const real* solver_density();
+  // What the constraint solver did: iterations of the last step, their sum and the steps
+  // a reader has seen, and the error it measured last (0 before the first step).
+  struct SolverReport {
+    int iterations = 0;
+    double error = 0;
+    std::int64_t iteration_sum = 0, steps = 0;
+  };
+  SolverReport& solver_report() { return solver_report_; }
   // Fixes that move particles outside the run loop's knowledge call this.
   void positions_changed() { ++positions_version_; }
   const std::vector<DensityBoundary*>& density_boundaries() const { return boundaries_; }
@@ -142,6 +150,7 @@ class Simulation {
   bool check_saved_states_ = false;           // warn at the next run about fixes on one side only
   RestartNote last_restart_;
   RunPlan run_plan_;
+  SolverReport solver_report_;
 
   std::vector<std::unique_ptr<Fix>> fixes_;
   std::vector<std::unique_ptr<Compute>> computes_;

@@ -29,7 +29,10 @@
 #include <cmath>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/sph/point_query.hpp"
@@ -59,19 +62,29 @@ class PositionBasedFluid : public Fix {
   PositionBasedFluid(const std::string& id, const Params& p)
       : Fix(id, "pbf"),
         iterations_(static_cast<int>(p.integer("iterations"))),
+        target_(p.real("error")),
+        target_max_(p.real("max_error")),
+        min_iterations_(static_cast<int>(p.integer("min_iterations"))),
+        max_iterations_(static_cast<int>(p.integer("max_iterations"))),
         epsilon_(p.real("epsilon")),
         k_(p.real("scorr_k")),
         n_(static_cast<int>(p.integer("scorr_n"))),
         dq_(p.real("scorr_dq")),
         one_sided_(p.boolean("one_sided")),
         omega_(p.real("relaxation")),
-        pressure_wanted_(p.boolean("pressure")) {}
+        pressure_wanted_(p.boolean("pressure")) {
+    if (adaptive() && min_iterations_ > max_iterations_)
+      throw Error(fmt::format("min_iterations = {} exceeds max_iterations = {}", min_iterations_, max_iterations_));
+  }
 
   std::vector<Stage> stages() const override {
     return {Stage::predict, Stage::constraints, Stage::velocity_update};
   }
   Role role() const override { return Role::solver; }
-  int constraint_iterations() const override { return iterations_; }
+  int constraint_iterations() const override { return adaptive() ? max_iterations_ : iterations_; }
+  bool constraints_done(int done) const override {
+    return adaptive() ? done >= max_iterations_ || (done >= min_iterations_ && reached_) : done >= iterations_;
+  }
   bool needs_neighbors() const override { return true; }
   Integration integration() const override { return Integration::positions; }
   const char* exclusive_job() const override { return "time integration"; }
@@ -128,6 +141,10 @@ class PositionBasedFluid : public Fix {
     const real to_pressure = real(-kappa_) * rho0 * inv_dt * inv_dt, inv_first_wall = real(1 / first_wall_);
     const auto& walls = sim.density_boundaries();
     for (auto& c : dp_) c.resize(n);
+    // A fixed count measures only in its last iteration, for the report.
+    const bool measure = adaptive() || iteration + 1 == iterations_;
+    if (measure) excess_.resize(n);
+    real* excess = excess_.data();
     wall_grad_.resize(3 * walls.size());
     for (auto& c : wall_grad_) c.resize(n);
 
@@ -157,6 +174,7 @@ class PositionBasedFluid : public Fix {
         }
       }
       real C = rho * inv_rho0 - 1;
+      if (measure) excess[i] = C > 0 ? C : 0;
       if (one_sided_ && C < 0) C = 0;
       lambda[i] = -real(omega_) * C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
       if (pressure) {
@@ -165,6 +183,8 @@ class PositionBasedFluid : public Fix {
         pressure[i] = (iteration == 0 ? 0 : pressure[i]) + to_pressure * lambda[i] / (1 + share);
       }
     }
+
+    if (measure) measure_error(sim);
 
     real *dpx = dp_[0].data(), *dpy = dp_[1].data(), *dpz = dp_[2].data();
 #pragma omp parallel for schedule(static)
@@ -222,7 +242,27 @@ class PositionBasedFluid : public Fix {
   }
 
  private:
+  // Accuracy-driven iterations: the compression measured in the density pass of an
+  // iteration (before its correction), summed in fixed blocks so the count of iterations,
+  // and with it every bit of the run, is the same at any thread count. Reported to the
+  // `iterations` compute.
+  bool adaptive() const { return target_ > 0 || target_max_ > 0; }
+  void measure_error(Simulation& sim) {
+    const std::size_t n = excess_.size();
+    const real* excess = excess_.data();
+    const double mean = n ? deterministic_sum(n, [&](std::size_t i) { return double(excess[i]); }) / double(n) : 0;
+    real most = 0;
+#pragma omp parallel for simd reduction(max : most) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) most = excess[i] > most ? excess[i] : most;
+    reached_ = (target_ <= 0 || mean <= target_) && (target_max_ <= 0 || most <= target_max_);
+    sim.solver_report().error = mean;
+  }
+
   int iterations_;
+  double target_, target_max_;
+  int min_iterations_, max_iterations_;
+  bool reached_ = false;
+  std::vector<real> excess_;  // max(rho/rho0 - 1, 0) of each particle, within an iteration
   double epsilon_, k_;
   int n_;
   double dq_;
@@ -244,6 +284,19 @@ void register_pbf(StyleRegistry& r) {
          StyleKind::fix,
          "Position Based Fluids density constraint and integrator (Macklin & Mueller 2013)",
          {ParamSpec{"iterations", ParamType::Integer, std::int64_t{4}, "", "constraint solver iterations per step"}
+              .within(1, 1000),
+          ParamSpec{"error", ParamType::Real, 0.0, "",
+                    "iterate until the mean compression, mean of max(rho/rho0 - 1, 0), is at most this (0: a fixed "
+                    "number of iterations, 'iterations')"}
+              .within(0, 1),
+          ParamSpec{"max_error", ParamType::Real, 0.0, "",
+                    "and until the largest compression is at most this (0: not checked)"}
+              .within(0, 1),
+          ParamSpec{"min_iterations", ParamType::Integer, std::int64_t{1}, "",
+                    "fewest iterations a step takes when 'error' or 'max_error' is set"}
+              .within(1, 1000),
+          ParamSpec{"max_iterations", ParamType::Integer, std::int64_t{100}, "",
+                    "most iterations a step takes when 'error' or 'max_error' is set"}
               .within(1, 1000),
           ParamSpec{"epsilon", ParamType::Real, 0.01, "S0", "relaxation epsilon, relative to S0 (see docs)"}.above(0),
           ParamSpec{"scorr_k", ParamType::Real, 0.0, "",

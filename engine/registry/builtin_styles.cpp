@@ -22,6 +22,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_sample(r);
   register_compute_density(r);
   register_compute_density_error(r);
+  register_compute_iterations(r);
   register_compute_kinetic_energy(r);
   register_compute_speed(r);
   register_compute_count(r);

@@ -36,6 +36,7 @@ void register_sample(StyleRegistry&);
 
 void register_compute_density(StyleRegistry&);
 void register_compute_density_error(StyleRegistry&);
+void register_compute_iterations(StyleRegistry&);
 void register_compute_kinetic_energy(StyleRegistry&);
 void register_compute_speed(StyleRegistry&);
 void register_compute_count(StyleRegistry&);
