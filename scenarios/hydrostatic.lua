@@ -8,7 +8,7 @@
 -- 2), height (column height in m, default 0.4), width (side of the square footprint in m,
 -- default height/2),
 -- iterations, error (an accuracy target instead of a fixed count), max_iterations, relaxation,
--- epsilon, one_sided, wall_density and scorr_k (default: the styles' defaults, see
+-- epsilon, one_sided, wall_density, contact (the walls' contact_distance) and scorr_k (default: the styles' defaults, see
 -- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
 -- csv (thermo CSV file, default none), out (frame directory, default none), solver ("pbf",
 -- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha).
@@ -43,9 +43,9 @@ else
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 end
 if (var.walls or "box") == "box" then
-  pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
+  pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true), contact_distance = var.contact})
 else  -- the same box as a solid container: a primitive, or a mesh file read with Assimp
-  local tank = {fluid = "inside", wall_density = flag(var.wall_density, true)}
+  local tank = {fluid = "inside", wall_density = flag(var.wall_density, true), contact_distance = var.contact}
   if var.walls == "mesh" then
     tank.file = geometry .. "unit_box.obj"
     tank.scale = {W, W, 1.5 * H}

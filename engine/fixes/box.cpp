@@ -1,5 +1,7 @@
-// box: walls at the domain faces. Positions are projected onto the box in every constraint
-// iteration (after the solver's correction); after the velocity update, a particle touching
+// box: walls at the domain faces. Positions are projected into the box in every constraint
+// iteration (after the solver's correction), to `contact_distance` spacings from each face
+// (0 by default; half a spacing, the radius of the volume a particle stands for, keeps the
+// first layer off the face, docs/physics.md "A column at rest"); after the velocity update, a particle touching
 // a wall keeps -e times its incoming normal velocity and loses tangential velocity at a
 // rate per second, exp(-rate dt) per step, so the friction a sliding front feels does not
 // depend on the time step.
@@ -13,9 +15,12 @@
 #include <cmath>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "engine/sph/density_boundary.hpp"
 #include "engine/core/error.hpp"
 #include "engine/registry/builtin_styles.hpp"
+#include "engine/sph/mass.hpp"
 #include "engine/sph/wall_density.hpp"
 #include "engine/core/simulation.hpp"
 
@@ -29,7 +34,8 @@ class Box : public Fix, public DensityBoundary {
       : Fix(id, "box"),
         restitution_(p.real("restitution")),
         friction_(p.real("friction")),
-        wall_density_(p.boolean("wall_density")) {}
+        wall_density_(p.boolean("wall_density")),
+        contact_spacings_(p.real("contact_distance")) {}
 
   std::vector<Stage> stages() const override {
     if (restitution_ > 0) return {Stage::predict, Stage::constraints, Stage::velocity_update};
@@ -52,7 +58,7 @@ class Box : public Fix, public DensityBoundary {
     real* x[3] = {P.x(), P.y(), P.z()};
     const std::size_t n = P.size();
     for (int a = 0; a < 3; ++a) {
-      const real lo = real(d.lo[a]), hi = real(d.hi[a]);
+      const real lo = real(d.lo[a] + contact_), hi = real(d.hi[a] - contact_);
       real* xa = x[a];
 #pragma omp parallel for simd schedule(static)
       for (std::size_t i = 0; i < n; ++i) xa[i] = xa[i] < lo ? lo : (xa[i] > hi ? hi : xa[i]);
@@ -72,7 +78,7 @@ class Box : public Fix, public DensityBoundary {
     for (std::size_t i = 0; i < n; ++i) {
       for (int a = 0; a < 3; ++a) {
         // side: -1 touching the lower face, +1 the upper one; a clamped position is exact.
-        const int side = x[a][i] <= real(d.lo[a]) ? -1 : (x[a][i] >= real(d.hi[a]) ? 1 : 0);
+        const int side = x[a][i] <= real(d.lo[a] + contact_) ? -1 : (x[a][i] >= real(d.hi[a] - contact_) ? 1 : 0);
         if (side == 0) continue;
         const real arriving = bounce ? incoming_[a][i] : v[a][i];
         if (arriving * side > 0) v[a][i] = -e * arriving;  // moving into the wall
@@ -84,6 +90,13 @@ class Box : public Fix, public DensityBoundary {
 
   void init(Simulation& sim) override {
     if (wall_density_) prepare(sim);
+    const double spacing = lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+    contact_ = contact_spacings_ * spacing;
+    const Domain& d = sim.domain();
+    for (int a = 0; a < 3; ++a)
+      if (2 * contact_ >= d.extent(a))
+        throw Error(fmt::format("contact_distance = {} spacings ({:.3g} m) leaves no room across the domain ({:.3g} m "
+                                "along {})", contact_spacings_, contact_, d.extent(a), "xyz"[a]));
   }
 
   void prepare(const Simulation& sim) override { wall_.prepare(sim); }
@@ -114,6 +127,7 @@ class Box : public Fix, public DensityBoundary {
   HalfSpaceWall wall_;
   double restitution_, friction_;
   bool wall_density_;
+  double contact_spacings_, contact_ = 0;  // in spacings, and in metres for this run
   std::vector<real> incoming_[3];
 };
 
@@ -127,7 +141,11 @@ void register_box(StyleRegistry& r) {
           ParamSpec{"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at a wall, exp(-rate dt)"}
               .at_least(0),
           {"wall_density", ParamType::Bool, true, "",
-           "count each wall as fluid at rest density behind it in the density sum"}},
+           "count each wall as fluid at rest density behind it in the density sum"},
+          ParamSpec{"contact_distance", ParamType::Real, 0.0, "spacing",
+                    "closest a particle's centre comes to a face, in particle spacings (0.5: its radius, which "
+                    "keeps a column at rest still; not yet the default: see docs)"}
+              .within(0, 2)},
          [](const std::string& id, const Params& p) { return std::make_unique<Box>(id, p); }, nullptr});
 }
 

@@ -5,7 +5,8 @@
 //    of a particle's neighbourhood and grad f come from a map precomputed around the
 //    surface (engine/geometry/solid_map.hpp). The solver adds rho0 f and rho0 grad f;
 //  - projection: in every constraint iteration a particle that reached the wall is put back
-//    on its surface; the path from where it started the step is searched for the first
+//    `contact_distance` spacings in front of its surface (0 by default; half a spacing is
+//    the radius of the volume a particle stands for, the box's default); the path from where it started the step is searched for the first
 //    contact, so a particle faster than a thin wall is thick stops at the near side
 //    instead of being pushed out of the far one;
 //  - after the velocity update, a particle on the wall loses its velocity into the wall and,
@@ -56,6 +57,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
         no_slip_(p.boolean("no_slip")),
         wall_density_(p.boolean("wall_density")),
         motion_(p.has("motion") ? p.motion("motion") : nullptr) {
+    contact_spacings_ = p.real("contact_distance");
     if (p.has("pivot")) {
       const Vec3 pivot = p.vec3("pivot");
       pivot_ = {pivot[0], pivot[1], pivot[2]};
@@ -329,7 +331,10 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   // distances are single precision), so that a wall on a face of the domain never leaves one
   // outside it; within twice the hair a particle touches the wall.
   double hair() const { return 1e-3 * cell_size(); }
-  double contact_tolerance() const { return 2 * hair(); }
+  // Where projection puts a particle: `contact_distance` spacings in front of the surface,
+  // and a hair more.
+  double gap() const { return contact_spacings_ * spacing_ + hair(); }
+  double contact_tolerance() const { return gap() + hair(); }
   double cell_size() const { return std::min(built_for_[0] / 4, spacing_ / 2); }
 
   RigidTransform pose_at(double t) const { return motion_ ? transform_of(motion_->at(t), pivot_) : RigidTransform{}; }
@@ -393,9 +398,9 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const auto where = map_.distance(p[0], p[1], p[2], d, g);
     const real step[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
     const real len = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
-    const real hair = real(this->hair());
-    const bool inside = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < hair / 2);
-    if (!inside && len < start_distance) return Contact::none;  // cannot have reached the wall
+    const real hair = real(this->hair()), gap = real(this->gap()), reach = gap - hair / 2;
+    const bool inside = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < reach);
+    if (!inside && len < start_distance - reach) return Contact::none;  // cannot have reached the wall
     // March from the start: the first point at or behind the surface is where it met the wall.
     const real min_step = real(0.25 * cell_size());
     real s = 0, hit[3], dh = 0, gh[3];
@@ -404,7 +409,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       for (int a = 0; a < 3; ++a) hit[a] = p0[a] + (len > 0 ? s / len : 0) * step[a];
       const auto w = map_.distance(hit[0], hit[1], hit[2], dh, gh);
       if (w == SolidMap::Where::wall) return Contact::lost;
-      if (w == SolidMap::Where::near && dh < hair / 2) {
+      if (w == SolidMap::Where::near && dh < reach) {
         met = true;
         break;
       }
@@ -417,18 +422,18 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     if (gl > 0) {
       // p's distance in front of the tangent plane at the contact
       const real into = ((p[0] - hit[0]) * gh[0] + (p[1] - hit[1]) * gh[1] + (p[2] - hit[2]) * gh[2]) / gl + dh;
-      if (into < hair)
-        for (int a = 0; a < 3; ++a) p[a] -= (into - hair) * gh[a] / gl;
+      if (into < gap)
+        for (int a = 0; a < 3; ++a) p[a] -= (into - gap) * gh[a] / gl;
     }
-    // Onto the surface, a hair in front of it: Newton steps along the distance's gradient
-    // (one for a flat wall).
+    // To the gap in front of the surface: Newton steps along the distance's gradient (one for
+    // a flat wall).
     for (int it = 0; it < 4; ++it) {
       const auto w = map_.distance(p[0], p[1], p[2], d, g);
       if (w == SolidMap::Where::wall) return Contact::lost;
-      if (w == SolidMap::Where::fluid || d >= hair / 2) break;
+      if (w == SolidMap::Where::fluid || d >= reach) break;
       const real g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
       if (g2 == 0) break;
-      for (int a = 0; a < 3; ++a) p[a] -= (d - hair) * g[a] / g2;
+      for (int a = 0; a < 3; ++a) p[a] -= (d - gap) * g[a] / g2;
     }
     return Contact::moved;
   }
@@ -459,7 +464,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   SolidMap map_;
   bool built_ = false;
   double built_for_[7] = {0, 0, 0, 0, 0, 0, 0};
-  double spacing_ = 0;
+  double spacing_ = 0, contact_spacings_ = 0;
   std::vector<real> start_[3], start_distance_;
   std::vector<real> push_[3];  // momentum the wall gave each particle in this step
   std::array<double, 6> load_{};
@@ -498,6 +503,10 @@ void register_solid(StyleRegistry& r) {
               .at_least(0),
           {"no_slip", ParamType::Bool, false, "", "stop all tangential motion at the wall (overrides friction)"},
           {"wall_density", ParamType::Bool, true, "", "count the wall as fluid at rest density behind its surface"},
+          ParamSpec{"contact_distance", ParamType::Real, 0.0, "spacing",
+                    "closest a particle's centre comes to the surface, in particle spacings (0.5: its radius; "
+                    "not yet the default: see docs)"}
+              .within(0, 2),
           ParamSpec{"motion", ParamType::Motion, std::nullopt, "",
                     "pose over time: function(t) returning {translate = {...}, rotate = {...}}, or pbf.keyframes{...}",
                     true},
