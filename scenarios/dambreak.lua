@@ -12,8 +12,9 @@
 -- 1.0), a (column width in m, default 0.1), out (frame directory, default "out"; "" for
 -- none), interval (seconds between frames, default 0.02), csv (thermo CSV, default
 -- out/thermo.csv), iterations (default 4), vorticity (confinement epsilon, default 0.05),
--- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false) and scorr_k to compare
--- the solver variants of docs/physics.md (default: the styles' defaults, pbfengine help pbf).
+-- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false), scorr_k, relaxation
+-- and contact (the walls' contact_distance) to compare the solver variants of
+-- docs/physics.md (default: the styles' defaults, pbfengine help pbf).
 -- solver: "pbf" (default) or "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000
 -- particles by default, as its steps are set by the sound speed: alpha, eos and fixed_dt
 -- pass to it; scenarios/dambreak_wcsph.lua runs it).
@@ -62,11 +63,12 @@ pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, eos = var.eos, density = var.density, fixed_dt = var.fixed_dt}
 else
-  pbf.fix("pbf", "pbf", {iterations = var.iterations, one_sided = flag(var.one_sided, true), scorr_k = var.scorr_k})
+  pbf.fix("pbf", "pbf", {iterations = var.iterations, relaxation = var.relaxation, one_sided = flag(var.one_sided, true),
+                         scorr_k = var.scorr_k})
   pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 end
-pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true)})
+pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true), contact_distance = var.contact})
 -- Pictures, movie and ParaView frames on request (share/lua/outputs.lua).
 require("outputs").add(out, {color = "speed", min = 0, max = 2.5, direction = {1, 2.2, -0.9}, zoom = 1.4})
 if out ~= "" then

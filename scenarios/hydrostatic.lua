@@ -54,7 +54,7 @@ else  -- the same box as a solid container: a primitive, or a mesh file read wit
   end
   pbf.fix("walls", "solid", tank)
 end
-if var.out then pbf.fix("frames", "dump/text", {path = var.out .. "/frame_*.txt", interval = 0.05}) end
+if var.out then pbf.fix("frames", "dump/text", {path = var.out .. "/frame_*.txt", interval = var.frame_interval or 0.05}) end
 
 pbf.compute("err", "density_error")
 pbf.compute("ke", "kinetic_energy")

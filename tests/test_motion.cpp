@@ -77,9 +77,10 @@ TEST(Keyframes, RefusesKeysOutOfOrderOrNotFinite) {
 // Galilean invariance: a column in a container that moves at a constant 0.5 m/s along x,
 // with the fluid given that velocity, moves as the same column in a container at rest, seen
 // from the moving container. Only rounding separates the two (the moving one takes each
-// position into the container's frame and back): after 0.2 s no particle is a thousandth of
-// a spacing from its place in the resting run, and the fluid's mean velocity is the
-// container's to 1e-4 of it (in double precision; single precision below).
+// position into the container's frame and back), but a particle held at the contact distance
+// is in contact or not by a hair, and rounding flips that: after 0.2 s no particle is 2% of a
+// spacing from its place in the resting run (measured 0.8%), and the fluid's mean velocity is
+// the container's to 1e-4 of it (in double precision; single precision below).
 class MovingContainer : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(MovingContainer, CarriesTheFluidAsAContainerAtRest) {
@@ -118,7 +119,7 @@ TEST_P(MovingContainer, CarriesTheFluidAsAContainerAtRest) {
     mean_vx += (B.vx()[k] - A.vx()[i]) / A.size();
   }
   if (sizeof(real) == sizeof(double)) {
-    EXPECT_LT(worst, 1e-3 * 0.01);
+    EXPECT_LT(worst, 0.02 * 0.01);
     EXPECT_NEAR(mean_vx, U, 1e-4 * U);
   } else {
     // Single precision rounds positions to 1e-8 m, and those differences grow in a column
@@ -152,16 +153,17 @@ TEST_P(Piston, PushesTheFluidWithItsSpeed) {
                                       {"motion", along_x({{0, 0}, {1, U}}, Keyframes::Interpolation::linear)}}));
   add_solver(sim, solver);
   sim.run_until(0.1);
-  const double face = 0.04 + U * sim.time();
+  // The solid keeps particles half a spacing (the default contact distance) off its face.
+  const double face = 0.04 + U * sim.time(), contact = face + 0.005;
   const auto& P = sim.particles();
-  // Particles in contact move with the wall; the first layer, within half a spacing of the
-  // face (whose particles the wall's density holds off the face), on average within 10%.
+  // Particles in contact move with the wall; the first layer, within a spacing of the face,
+  // on average within 10%.
   int first_layer = 0;
   double first_layer_vx = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
-    ASSERT_GE(P.x()[i], face - 1e-6) << "particle " << P.ids()[i];
-    if (P.x()[i] < face + 1e-5) EXPECT_GE(P.vx()[i], U * (1 - 1e-3)) << "particle " << P.ids()[i];  // contact
-    if (P.x()[i] < face + 0.005) ++first_layer, first_layer_vx += P.vx()[i];
+    ASSERT_GE(P.x()[i], contact - 1e-6) << "particle " << P.ids()[i];
+    if (P.x()[i] < contact + 1e-5) EXPECT_GE(P.vx()[i], U * (1 - 1e-3)) << "particle " << P.ids()[i];
+    if (P.x()[i] < face + 0.01) ++first_layer, first_layer_vx += P.vx()[i];
   }
   ASSERT_GT(first_layer, 0);
   EXPECT_NEAR(first_layer_vx / first_layer, U, 0.1 * U);
@@ -200,11 +202,13 @@ TEST(MovingSolid, ASpinningNoSlipCubeDragsTheFluidTouchingIt) {
   for (std::size_t i = 0; i < P.size(); ++i) {
     const double r[3] = {P.x()[i] - c, P.y()[i] - c, P.z()[i] - c};
     const double body[3] = {cs * r[0] + sn * r[1], -sn * r[0] + cs * r[1], r[2]};  // R^T r
-    // The face it touches (the one it is outside of), away from the edges by h.
+    // The face it touches (the one it is outside of, at the default contact distance of half
+    // a spacing), away from the edges by h.
+    const double contact = half + 0.005;
     int face = -1;
     for (int a = 0; a < 3; ++a)
-      if (std::abs(body[a]) > half - 1e-9) face = a;
-    if (face < 0 || std::abs(body[face]) > half + 1e-5) continue;
+      if (std::abs(body[a]) > contact - 1e-5) face = a;
+    if (face < 0 || std::abs(body[face]) > contact + 1e-5) continue;
     bool inner = true;
     for (int a = 0; a < 3; ++a) inner = inner && (a == face || std::abs(body[a]) < half - 0.006);
     if (!inner) continue;

@@ -61,8 +61,9 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
                            "  fields = {'position', 'pressure'}})\npbf.run_until(1.0)\n");
   ASSERT_EQ(r.code, 0) << r.output;
   const double H = 0.2, s = 0.01, h = 0.02, rho0 = 1000, g = 9.81;
-  // Layers 1 cm thick; pressure against depth below the free surface, which lies half a
-  // spacing above the top particles' centres.
+  // Bands 2 cm thick (two layers of particles: the column at rest keeps its lattice, whose
+  // layers alternate by about 10% in pressure, docs/physics.md "Known limits of WCSPH");
+  // pressure against depth below the free surface, half a spacing above the top particles.
   std::vector<double> sum(30, 0), count(30, 0);
   double top = 0;
   int frames = 0;
@@ -75,7 +76,7 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
     for (const auto& row : rows) {
       ASSERT_EQ(row.size(), 4u);
       frame_top = std::max(frame_top, row[2]);
-      const int layer = static_cast<int>(row[2] / 0.01);
+      const int layer = static_cast<int>(row[2] / 0.02);
       sum.at(layer) += row[3];
       count.at(layer) += 1;
     }
@@ -85,20 +86,20 @@ TEST(Wcsph, ColumnAtRestCarriesTheHydrostaticPressure) {
   }
   ASSERT_GE(frames, 20);  // 21 unless the last falls just after 1.0 s (frames count from the dump's start)
   const double surface = top / frames + s / 2, scale = rho0 * g * surface;
-  // Bound: 16% of the floor pressure. Measured: 13-15% (5-6% when the density was summed
+  // Bound: 16% of the floor pressure. Measured: 10-12% (5-6% when the density was summed
   // with poly6, whose pressure force was not conservative). The SPH pressure gradient with a
   // support of two spacings is not exact (the layers are not a lattice after the transient),
   // so the column settles with a steeper pressure gradient than rho0 g (docs/physics.md,
   // "Known limits of WCSPH"); averaging 20 frames leaves about 1% of acoustic noise.
   int checked = 0;
   for (int layer = 0; layer < 30; ++layer) {
-    const double z = (layer + 0.5) * 0.01;
+    const double z = (layer + 0.5) * 0.02;
     if (count[layer] == 0 || z < h || z > surface - h) continue;
     const double expected = rho0 * g * (surface - z), measured = sum[layer] / count[layer];
     EXPECT_NEAR(measured, expected, 0.16 * scale) << "layer at z = " << z;
     ++checked;
   }
-  EXPECT_GE(checked, 14);
+  EXPECT_GE(checked, 7);
 }
 
 // Z = front / a at T = t sqrt(2 g / a), interpolated from a thermo CSV.
@@ -298,12 +299,14 @@ TEST(Wcsph, ContinuityDensityKeepsAColumnAtRest) {
 
 // `density` and `density_error` are the density the solver uses; the SPH sum has its own
 // name. Under the continuity density the two differ; under the summation they agree, and
-// frame 0 (before any step) holds the summed density, not an empty field.
+// frame 0 (before any step) holds the summed density, not an empty field. (The sum is taken
+// before the walls' projection moves the particles at the contact distance: those and their
+// neighbours, within h plus half a spacing of a face, are not compared.)
 TEST(Wcsph, DensityColumnsAreTheSolversDensity) {
   for (const std::string density : {"continuity", "summation"}) {
     const auto dir = temp_dir("wcsph-density");
     auto r = run_column(dir, "pbf.fix('f', 'dump/text', {path = var.dir .. '/f_*.txt', every = 100, fields = {'id', "
-                             "'density', 'density_error', 'summed_density'}})\npbf.run(200)\n",
+                             "'density', 'density_error', 'summed_density', 'position'}})\npbf.run(200)\n",
                         " -v fixed_dt=true -v dt=0.0002 -v density=" + density);
     ASSERT_EQ(r.code, 0) << r.output;
     for (const char* frame : {"f_00000.txt", "f_00002.txt"}) {
@@ -311,8 +314,10 @@ TEST(Wcsph, DensityColumnsAreTheSolversDensity) {
       ASSERT_EQ(rows.size(), 2000u);
       std::vector<double> difference;  // |rho - rho_summed| / rho0
       for (const auto& row : rows) {
-        ASSERT_EQ(row.size(), 4u);
+        ASSERT_EQ(row.size(), 7u);
         EXPECT_NEAR(row[2], row[1] / 1000 - 1, 1e-12 + pbf::test::kRounding) << frame << " particle " << row[0];
+        const double x = row[4], y = row[5], z = row[6], clear = 0.02 + 0.005;
+        if (density == "summation" && std::min({x, y, z, 0.1 - x, 0.1 - y}) < clear) continue;
         difference.push_back(std::fabs(row[1] - row[3]) / 1000);
       }
       std::sort(difference.begin(), difference.end());

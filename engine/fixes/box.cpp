@@ -1,7 +1,7 @@
 // box: walls at the domain faces. Positions are projected into the box in every constraint
 // iteration (after the solver's correction), to `contact_distance` spacings from each face
-// (0 by default; half a spacing, the radius of the volume a particle stands for, keeps the
-// first layer off the face, docs/physics.md "A column at rest"); after the velocity update, a particle touching
+// (half a spacing by default: the radius of the volume a particle stands for keeps the first
+// layer off the face, docs/physics.md "A column at rest"); after the velocity update, a particle touching
 // a wall keeps -e times its incoming normal velocity and loses tangential velocity at a
 // rate per second, exp(-rate dt) per step, so the friction a sliding front feels does not
 // depend on the time step.
@@ -142,9 +142,9 @@ void register_box(StyleRegistry& r) {
               .at_least(0),
           {"wall_density", ParamType::Bool, true, "",
            "count each wall as fluid at rest density behind it in the density sum"},
-          ParamSpec{"contact_distance", ParamType::Real, 0.0, "spacing",
+          ParamSpec{"contact_distance", ParamType::Real, 0.5, "spacing",
                     "closest a particle's centre comes to a face, in particle spacings (0.5: its radius, which "
-                    "keeps a column at rest still; not yet the default: see docs)"}
+                    "keeps a column at rest still, docs/physics.md)"}
               .within(0, 2)},
          [](const std::string& id, const Params& p) { return std::make_unique<Box>(id, p); }, nullptr});
 }

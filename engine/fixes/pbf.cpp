@@ -24,6 +24,9 @@
 // The last factor: a wall moves i by lambda_i / rho0 grad(rho_wall) (the wall has no lambda),
 // where walls mirroring the pressure would push with 2 p_i, so a particle against a wall
 // (rho_wall,1: the wall density of a lattice's first layer) carries twice the multiplier.
+// A wall's projection (its contact distance) that moves i by dx after a correction does what
+// the wall term would with lambda = rho0 (dx . G) / |G|^2, G the walls' density gradient at
+// i: that share of the load is added to p_i the same way.
 // Kept in the field "pressure" only when asked for (parameter `pressure`, or a pressure probe).
 #include <algorithm>
 #include <cmath>
@@ -99,6 +102,7 @@ class PositionBasedFluid : public Fix {
           {"pressure", 1, "pressure from the constraint, -kappa rho0/dt^2 sum of lambda over the step (Pa)", false});
       kappa_ = gradient_norm(P.mean_mass(), sim.kernels(), sim.rest_density());
       first_wall_ = lattice_wall_density(P.mean_mass(), sim.kernels(), sim.rest_density());
+      rest_density_ = real(sim.rest_density());
     }
     S0_ = lattice_gradient_sum(P.mean_mass(), sim.kernels(), sim.rest_density());
     scorr_w_ = sim.kernels().W(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
@@ -147,6 +151,7 @@ class PositionBasedFluid : public Fix {
     real* excess = excess_.data();
     wall_grad_.resize(3 * walls.size());
     for (auto& c : wall_grad_) c.resize(n);
+    if (pressure) wall_share_.resize(n);
 
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -179,8 +184,10 @@ class PositionBasedFluid : public Fix {
       lambda[i] = -real(omega_) * C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
       if (pressure) {
         // Next to a wall the particle's multiplier does the wall's share too (see the top).
+        if (iteration > 0) add_contact_pressure(i, x[i], y[i], z[i], pressure[i], to_pressure);
         const real share = std::min(real(1), (rho - fluid_rho) * inv_first_wall);
         pressure[i] = (iteration == 0 ? 0 : pressure[i]) + to_pressure * lambda[i] / (1 + share);
+        wall_share_[i] = share;
       }
     }
 
@@ -224,6 +231,11 @@ class PositionBasedFluid : public Fix {
       y[i] += dpy[i];
       z[i] += dpz[i];
     }
+    if (pressure) {  // where the walls' projections, which come next, start from
+      corrected_[0].assign(x, x + n);
+      corrected_[1].assign(y, y + n);
+      corrected_[2].assign(z, z + n);
+    }
   }
 
   void velocity_update(Simulation& sim) override {
@@ -231,6 +243,12 @@ class PositionBasedFluid : public Fix {
     const std::size_t n = P.size();
     const real inv_dt = real(1 / sim.timestep());
     const real* x[3] = {P.x(), P.y(), P.z()};
+    if (keep_pressure_) {  // the walls' projection after the last correction
+      real* pressure = P.data(pressure_);
+      const real to_pressure = real(-kappa_) * real(sim.rest_density()) * inv_dt * inv_dt;
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) add_contact_pressure(i, x[0][i], x[1][i], x[2][i], pressure[i], to_pressure);
+    }
     real* v[3] = {P.vx(), P.vy(), P.vz()};
     for (int c = 0; c < 3; ++c) {
       const real* prev = prev_[c].data();
@@ -247,6 +265,18 @@ class PositionBasedFluid : public Fix {
   // and with it every bit of the run, is the same at any thread count. Reported to the
   // `iterations` compute.
   bool adaptive() const { return target_ > 0 || target_max_ > 0; }
+
+  // The load a wall's projection carried since the last correction, as the multiplier its
+  // density term would have needed (see the top), from the walls' gradient of that iteration.
+  void add_contact_pressure(std::size_t i, real x, real y, real z, real& pressure, real to_pressure) const {
+    real G[3] = {0, 0, 0};
+    for (std::size_t b = 0; b < wall_grad_.size() / 3; ++b)
+      for (int c = 0; c < 3; ++c) G[c] += wall_grad_[3 * b + c][i];
+    const real G2 = G[0] * G[0] + G[1] * G[1] + G[2] * G[2];
+    if (G2 == 0) return;
+    const real moved = (x - corrected_[0][i]) * G[0] + (y - corrected_[1][i]) * G[1] + (z - corrected_[2][i]) * G[2];
+    pressure += to_pressure * rest_density_ * moved / G2 / (1 + wall_share_[i]);
+  }
   void measure_error(Simulation& sim) {
     const std::size_t n = excess_.size();
     const real* excess = excess_.data();
@@ -274,6 +304,8 @@ class PositionBasedFluid : public Fix {
   FieldId lambda_ = 0, pressure_ = 0;
   std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
   std::vector<real> dp_[3];    // corrections of one iteration
+  std::vector<real> corrected_[3], wall_share_;  // with the pressure: positions after the last correction, wall share
+  real rest_density_ = 1000;
   std::vector<std::vector<real>> wall_grad_;  // each wall's density gradient (3 arrays per wall), within an iteration
 };
 
@@ -306,7 +338,7 @@ void register_pbf(StyleRegistry& r) {
           ParamSpec{"scorr_n", ParamType::Integer, std::int64_t{4}, "", "artificial pressure exponent n"}.within(1, 16),
           ParamSpec{"scorr_dq", ParamType::Real, 0.2, "h", "artificial pressure reference distance delta q, in units of h"}
               .above_within(0, 1),
-          ParamSpec{"relaxation", ParamType::Real, 1.0, "",
+          ParamSpec{"relaxation", ParamType::Real, 0.7, "",
                     "Jacobi relaxation omega, scales lambda (below 0.77 the iterations converge on the bulk lattice; "
                     "see docs)"}
               .above_within(0, 1),

@@ -5,10 +5,10 @@
 //    of a particle's neighbourhood and grad f come from a map precomputed around the
 //    surface (engine/geometry/solid_map.hpp). The solver adds rho0 f and rho0 grad f;
 //  - projection: in every constraint iteration a particle that reached the wall is put back
-//    `contact_distance` spacings in front of its surface (0 by default; half a spacing is
-//    the radius of the volume a particle stands for, the box's default); the path from where it started the step is searched for the first
-//    contact, so a particle faster than a thin wall is thick stops at the near side
-//    instead of being pushed out of the far one;
+//    `contact_distance` spacings in front of its surface (half a spacing by default, the
+//    radius of the volume a particle stands for, as for the box); the path from where it
+//    started the step is searched for the first contact, so a particle faster than a thin
+//    wall is thick stops at the near side instead of being pushed out of the far one;
 //  - after the velocity update, a particle on the wall loses its velocity into the wall and,
 //    with friction, its tangential velocity at a rate per second (exp(-rate dt) per step),
 //    or all of it with no_slip.
@@ -425,15 +425,17 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       if (into < gap)
         for (int a = 0; a < 3; ++a) p[a] -= (into - gap) * gh[a] / gl;
     }
-    // To the gap in front of the surface: Newton steps along the distance's gradient (one for
-    // a flat wall).
+    // To the gap in front of the surface: steps of the missing distance along the distance's
+    // gradient (one for a flat wall). Not Newton steps, d / |grad d|: in a cell at an edge or a
+    // corner the interpolated distance is flat in places, and a small gradient would throw the
+    // particle across the domain.
     for (int it = 0; it < 4; ++it) {
       const auto w = map_.distance(p[0], p[1], p[2], d, g);
       if (w == SolidMap::Where::wall) return Contact::lost;
       if (w == SolidMap::Where::fluid || d >= reach) break;
-      const real g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2];
-      if (g2 == 0) break;
-      for (int a = 0; a < 3; ++a) p[a] -= (d - gap) * g[a] / g2;
+      const real gl = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      if (gl == 0) break;
+      for (int a = 0; a < 3; ++a) p[a] -= (d - gap) * g[a] / gl;
     }
     return Contact::moved;
   }
@@ -503,9 +505,9 @@ void register_solid(StyleRegistry& r) {
               .at_least(0),
           {"no_slip", ParamType::Bool, false, "", "stop all tangential motion at the wall (overrides friction)"},
           {"wall_density", ParamType::Bool, true, "", "count the wall as fluid at rest density behind its surface"},
-          ParamSpec{"contact_distance", ParamType::Real, 0.0, "spacing",
-                    "closest a particle's centre comes to the surface, in particle spacings (0.5: its radius; "
-                    "not yet the default: see docs)"}
+          ParamSpec{"contact_distance", ParamType::Real, 0.5, "spacing",
+                    "closest a particle's centre comes to the surface, in particle spacings (0.5: its radius, "
+                    "as the box's)"}
               .within(0, 2),
           ParamSpec{"motion", ParamType::Motion, std::nullopt, "",
                     "pose over time: function(t) returning {translate = {...}, rotate = {...}}, or pbf.keyframes{...}",
