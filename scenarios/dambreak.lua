@@ -12,9 +12,12 @@
 -- 1.0), a (column width in m, default 0.1), out (frame directory, default "out"; "" for
 -- none), interval (seconds between frames, default 0.02), csv (thermo CSV, default
 -- out/thermo.csv), iterations (default 4), vorticity (confinement epsilon, default 0.05),
--- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false), scorr_k, relaxation
--- and contact (the walls' contact_distance) to compare the solver variants of
--- docs/physics.md (default: the styles' defaults, pbfengine help pbf).
+-- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false), scorr_k, relaxation,
+-- error and max_iterations (an accuracy target) and contact (the walls' contact_distance) to
+-- compare the solver variants of docs/physics.md (default: the styles' defaults, pbfengine
+-- help pbf); dt_iterations: PBF's time step chosen by fix cfl, the largest in which the
+-- accuracy target `error` takes at most that many iterations (with courant, default 0.4, and
+-- max_dt).
 -- solver: "pbf" (default) or "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000
 -- particles by default, as its steps are set by the sound speed: alpha, eos and fixed_dt
 -- pass to it; scenarios/dambreak_wcsph.lua runs it).
@@ -64,9 +67,13 @@ if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, eos = var.eos, density = var.density, fixed_dt = var.fixed_dt}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, relaxation = var.relaxation, one_sided = flag(var.one_sided, true),
-                         scorr_k = var.scorr_k})
+                         scorr_k = var.scorr_k, error = var.error, max_iterations = var.max_iterations})
   pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
+  if var.dt_iterations then  -- the largest step in which pbf reaches `error` within dt_iterations
+    pbf.fix("cfl", "cfl", {iterations = var.dt_iterations, courant = var.courant or 0.4,
+                           max_dt = var.max_dt, align = out ~= "" and (var.interval or 0.02) or nil})
+  end
 end
 pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true), contact_distance = var.contact})
 -- Pictures, movie and ParaView frames on request (share/lua/outputs.lua).

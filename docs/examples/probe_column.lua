@@ -29,7 +29,8 @@ pbf.run_until(settle)
 local sum, top, samples = {}, 0, 0
 for k = 0, 8 do sum[k] = 0 end
 pbf.every("average", 1, function()
-  for k = 0, 8 do sum[k] = sum[k] + pbf.value("p.z" .. k) end
+  local p = pbf.value("p")
+  for k = 0, 8 do sum[k] = sum[k] + p["z" .. k] end
   top, samples = top + pbf.value("top"), samples + 1
 end)
 pbf.run_until(t_end)

@@ -1,11 +1,22 @@
-// cfl: time-step control for explicit solvers (WCSPH). At the end of every step (and when a
-// run starts) it sets the next step's size to
-//   dt = min(max_dt, courant h / (c + |v|max), force sqrt(h / |a|max))
+// cfl: time-step control, for explicit solvers (WCSPH) and for PBF. At the end of every step
+// (and when a run starts) it sets the next step's size to
+//   dt = min(max_dt, courant h / (c + |v|max), force sqrt(h / |a|max), dt_solver)
 // with h the kernel support radius, c the largest signal speed of the pipeline's fixes (the
-// wcsph sound speed) unless given, |a|max from the integrator's "acceleration" field, and
-// |v|max the fastest particle or moving solid (over the step now set), so a wall moves less
-// than a fraction of h in a step. With
-// `align` > 0 a step that would pass the next multiple of align (from the fix's start) is
+// wcsph sound speed; none for pbf) unless given, |a|max from the integrator's "acceleration"
+// field, and |v|max the fastest particle or moving solid (over the step now set), so a wall
+// moves less than a fraction of h in a step.
+//
+// dt_solver (only with `iterations`) is the largest step in which the constraint solver meets
+// its accuracy target (pbf's `error`) within N = `iterations` iterations. With n the
+// iterations the last step of size dt took:
+//   n > N:                              dt_solver = dt max(N / n, 0.8)
+//   n < N, from a step dt_solver chose:  dt_solver = 1.05 dt
+//   n = N:                              it stays.
+// It starts from the step the script set. It changes by a fifth a step at most: a PBF step
+// turns the compression it removes into velocity, dx / dt, so a step much shorter than the
+// one before throws the fluid apart (docs/physics.md, "Time step").
+//
+// With `align` > 0 a step that would pass the next multiple of align (from the fix's start) is
 // shortened to end on it, so frames on that interval land on their times. Thermo's dt
 // column shows the step it chose.
 #include <algorithm>
@@ -30,7 +41,8 @@ class Cfl : public Fix {
         force_(p.real("force")),
         max_dt_(p.real("max_dt")),
         c_(p.real("sound_speed")),
-        align_(p.real("align")) {}
+        align_(p.real("align")),
+        target_iterations_(static_cast<int>(p.integer("iterations"))) {}
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
   const char* exclusive_job() const override { return "time-step control"; }
@@ -40,24 +52,47 @@ class Cfl : public Fix {
       started_ = true;
       if (max_dt_ == 0) max_dt_ = sim.timestep();  // the script's step is the upper bound
       start_ = sim.time();
+      solver_dt_ = std::min(max_dt_, sim.timestep());  // from the script's step, growing as the solver allows
+    }
+    if (watches_solver()) {
+      const Fix* integrator = sim.integrator();
+      if (!integrator || integrator->integration() != Integration::positions)
+        throw Error("'iterations' needs a constraint solver that reports them (pbf, with an accuracy target 'error')");
     }
     choose(sim);
   }
 
-  void end_of_step(Simulation& sim) override { choose(sim); }
+  void end_of_step(Simulation& sim) override {
+    if (watches_solver()) follow_solver(sim);
+    choose(sim);
+  }
 
   void save_state(ByteWriter& w) const override {
     w.put<std::uint8_t>(started_);
     w.put(max_dt_);
     w.put(start_);
+    w.put(solver_dt_);
   }
   void restore_state(ByteReader& r) override {
     started_ = r.get<std::uint8_t>() != 0;
     max_dt_ = r.get<double>();
     start_ = r.get<double>();
+    solver_dt_ = r.get<double>();
   }
 
  private:
+  bool watches_solver() const { return target_iterations_ > 0; }
+
+  // dt_solver from the iterations of the step just taken (see the top).
+  void follow_solver(Simulation& sim) {
+    const int n = sim.solver_report().iterations;
+    const double dt = sim.timestep();
+    if (n > target_iterations_)
+      solver_dt_ = dt * std::max(0.8, double(target_iterations_) / n);
+    else if (n < target_iterations_ && dt >= solver_dt_ * (1 - 1e-12))
+      solver_dt_ = std::min(max_dt_, 1.05 * dt);
+  }
+
   void choose(Simulation& sim) {
     const auto& P = sim.particles();
     const std::size_t n = P.size();
@@ -77,7 +112,7 @@ class Cfl : public Fix {
       v2 = std::max(v2, speed * speed);
     }
     const double h = sim.kernel_radius();
-    double dt = max_dt_;
+    double dt = watches_solver() ? std::min(max_dt_, solver_dt_) : max_dt_;
     if (c + std::sqrt(v2) > 0) dt = std::min(dt, courant_ * h / (c + std::sqrt(v2)));
     if (a2 > 0) dt = std::min(dt, force_ * std::sqrt(h / std::sqrt(a2)));
     if (align_ > 0) {
@@ -91,8 +126,9 @@ class Cfl : public Fix {
   }
 
   double courant_, force_, max_dt_, c_, align_;
+  int target_iterations_;
   bool started_ = false;
-  double start_ = 0;
+  double start_ = 0, solver_dt_ = 0;
 };
 
 }  // namespace
@@ -100,7 +136,7 @@ class Cfl : public Fix {
 void register_cfl(StyleRegistry& r) {
   r.add({"cfl",
          StyleKind::fix,
-         "time-step control: dt = min(max_dt, courant h/(c + |v|max), force sqrt(h/|a|max)), chosen every step",
+         "time-step control: dt = min(max_dt, courant h/(c + |v|max), force sqrt(h/|a|max), solver bound), chosen every step",
          {ParamSpec{"courant", ParamType::Real, 0.15, "",
                     "Courant number on h / (c + |v|max), h the support radius (above 1 a step outruns the signal)"}
               .above_within(0, 1),
@@ -109,7 +145,11 @@ void register_cfl(StyleRegistry& r) {
           ParamSpec{"sound_speed", ParamType::Real, 0.0, "m/s", "c (0: the largest signal speed of the fixes, wcsph's c0)"}
               .within(0, kMostSoundSpeed),
           ParamSpec{"align", ParamType::Real, 0.0, "s", "end steps on multiples of this interval (0: no alignment)"}
-              .at_least(0)},
+              .at_least(0),
+          ParamSpec{"iterations", ParamType::Integer, std::int64_t{0}, "",
+                    "largest step in which pbf reaches its accuracy target ('error') in at most this many "
+                    "iterations (0: not used)"}
+              .within(0, 1000)},
          [](const std::string& id, const Params& p) { return std::make_unique<Cfl>(id, p); }, nullptr});
 }
 
