@@ -1,8 +1,9 @@
 -- dambreak.lua: the 3D dam break of Martin & Moyce (1952). A water column a wide (x) and
 -- 2a high (z), against the wall x = 0 of a tank 5a long and 4a high, is released at t = 0,
 -- surges along the floor, runs up the far wall and falls back. Thermo tracks the surge front
--- (the 99th percentile of x) so that Z = front / a against T = t sqrt(2 g / a) can be
--- compared with the experiment (share/plot_front.py); text frames go to out/
+-- (`front`: the 99th percentile of x, or `-v percentile=P`; `far`: the farthest particle)
+-- every 0.01 s (`-v thermo=SECONDS`) so that Z = front / a against T = t sqrt(2 g / a) can be
+-- compared with the experiment (share/plot_front.py, share/validation/martin_moyce.sh); text frames go to out/
 -- (share/render_frames.py --box 0.5 0.05 0.4 makes pictures and a movie).
 --
 --   pbfengine run scenarios/dambreak.lua [-v particles=30000] [-v t_end=1.0] [-v out=out]
@@ -13,7 +14,7 @@
 -- none), interval (seconds between frames, default 0.02), csv (thermo CSV, default
 -- out/thermo.csv), iterations (default 4), vorticity (confinement epsilon, default 0.05),
 -- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false), scorr_k, relaxation,
--- error and max_iterations (an accuracy target) and contact (the walls' contact_distance) to
+-- error and max_iterations (an accuracy target), contact and friction (the walls') to
 -- compare the solver variants of docs/physics.md (default: the styles' defaults, pbfengine
 -- help pbf); dt_iterations: PBF's time step chosen by fix cfl, the largest in which the
 -- accuracy target `error` takes at most that many iterations (with courant, default 0.4, and
@@ -75,7 +76,8 @@ else
                            max_dt = var.max_dt, align = out ~= "" and (var.interval or 0.02) or nil})
   end
 end
-pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true), contact_distance = var.contact})
+pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true), contact_distance = var.contact,
+                         friction = var.friction})
 -- Pictures, movie and ParaView frames on request (share/lua/outputs.lua).
 require("outputs").add(out, {color = "speed", min = 0, max = 2.5, direction = {1, 2.2, -0.9}, zoom = 1.4})
 if out ~= "" then
@@ -88,13 +90,14 @@ if out ~= "" then
 end
 
 pbf.compute("err", "density_error")
-pbf.compute("front", "front", {axis = "x", percentile = 99})
+pbf.compute("front", "front", {axis = "x", percentile = var.percentile or 99})
+pbf.compute("far", "front", {axis = "x", percentile = 100})
 pbf.compute("ke", "kinetic_energy")
-pbf.thermo{every = math.max(1, math.floor(0.01 / dt_typical)),
+pbf.thermo{every = math.max(1, math.floor((var.thermo or 0.01) / dt_typical)),
            -- a continued run keeps the first run's CSV: its own starts at the restart's step
            csv = var.csv or (out ~= "" and (var.restart and string.format("%s/thermo.%d.csv", out, pbf.step())
                                                      or out .. "/thermo.csv") or nil),
-           columns = {"step", "time", "dt", "front", "err.avg", "err.max", "ke"}}
+           columns = {"step", "time", "dt", "front", "far", "err.avg", "err.max", "ke"}}
 
 print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %s%.4g s, to t = %g s", solver,
                     pbf.count(), a, pbf.kernel_radius(), solver == "wcsph" and "<= " or "", dt, t_end))
