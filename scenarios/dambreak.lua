@@ -1,16 +1,17 @@
 -- dambreak.lua: the 3D dam break of Martin & Moyce (1952). A water column a wide (x) and
--- 2a high (z), against the wall x = 0 of a tank 5a long and 4a high, is released at t = 0,
--- surges along the floor, runs up the far wall and falls back. Thermo tracks the surge front
--- (`front`: the 99th percentile of x, or `-v percentile=P`; `far`: the farthest particle)
--- every 0.01 s (`-v thermo=SECONDS`) so that Z = front / a against T = t sqrt(2 g / a) can be
--- compared with the experiment (share/plot_front.py, share/validation/martin_moyce.sh); text frames go to out/
+-- 2a high (z; `-v height=1` for their square column), against the wall x = 0 of a tank 5a
+-- long and 4a high, is released at t = 0, surges along the floor, runs up the far wall and
+-- falls back. Thermo tracks the surge front (`front`: the 99th percentile of x, or `-v
+-- percentile=P`; `far`: the farthest particle) and the water's height at the back wall
+-- (`back`) every 0.01 s (`-v thermo=SECONDS`) so that Z = front / a against T = t sqrt(2 g / a)
+-- can be compared with the experiment (share/plot_front.py, share/validation/martin_moyce.py); text frames go to out/
 -- (share/render_frames.py --box 0.5 0.05 0.4 makes pictures and a movie).
 --
 --   pbfengine run scenarios/dambreak.lua [-v particles=30000] [-v t_end=1.0] [-v out=out]
 --   pbfengine run scenarios/dambreak.lua -v restart=out/restart.400.restart   (continue to t_end)
 --
 -- Variables: particles (about how many, default 30000), t_end (simulated seconds, default
--- 1.0), a (column width in m, default 0.1), out (frame directory, default "out"; "" for
+-- 1.0), a (column width in m, default 0.1), height (column height in a, default 2), out (frame directory, default "out"; "" for
 -- none), interval (seconds between frames, default 0.02), csv (thermo CSV, default
 -- out/thermo.csv), iterations (default 4), vorticity (confinement epsilon, default 0.05),
 -- xsph (XSPH c, default 0.01); one_sided, wall_density (true/false), scorr_k, relaxation,
@@ -42,14 +43,16 @@ local a = var.a or 0.1
 local out = var.out or "out"
 local g = 9.81
 
--- Column a x (a/2) x 2a: N = (a/s)^3 particles at spacing s; kernel radius h = 2 s.
+-- Column a x (a/2) x 2a: N = (a/s)^3 particles at spacing s (half that for the square
+-- column); kernel radius h = 2 s.
 local layers = math.max(4, math.floor((N) ^ (1 / 3) + 0.5))
 local s = a / layers
 local h = 2 * s
 local depth = layers // 2 * s
-local dt = var.dt or 0.4 * h / math.sqrt(2 * g * 2 * a)   -- 0.4 h per step at the free-fall speed
+local height = (var.height or 2) * a   -- Martin & Moyce's columns: 2a (n^2 = 2) and a (n^2 = 1)
+local dt = var.dt or 0.4 * h / math.sqrt(2 * g * height)   -- 0.4 h per step at the free-fall speed
 -- WCSPH steps are set by the sound speed c0 = 10 sqrt(2 g 2a) (fix cfl; dt above is their bound)
-local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * g * 2 * a)) or dt
+local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * g * height)) or dt
 
 if var.restart then
   local r = pbf.read_restart(var.restart)   -- domain, h, dt, particles, step and time
@@ -60,7 +63,7 @@ else
   pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 4 * a}}   -- tall enough for the run-up on the far wall
   pbf.kernel_radius(h)
   pbf.timestep(dt)
-  pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, 2 * a}, spacing = s}
+  pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, height}, spacing = s}
 end
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
@@ -92,12 +95,13 @@ end
 pbf.compute("err", "density_error")
 pbf.compute("front", "front", {axis = "x", percentile = var.percentile or 99})
 pbf.compute("far", "front", {axis = "x", percentile = 100})
+pbf.compute("back", "gauge", {points = {{0, depth / 2, 0}}})   -- the water's height at the back wall
 pbf.compute("ke", "kinetic_energy")
 pbf.thermo{every = math.max(1, math.floor((var.thermo or 0.01) / dt_typical)),
            -- a continued run keeps the first run's CSV: its own starts at the restart's step
            csv = var.csv or (out ~= "" and (var.restart and string.format("%s/thermo.%d.csv", out, pbf.step())
                                                      or out .. "/thermo.csv") or nil),
-           columns = {"step", "time", "dt", "front", "far", "err.avg", "err.max", "ke"}}
+           columns = {"step", "time", "dt", "front", "far", "back", "err.avg", "err.max", "ke"}}
 
 print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %s%.4g s, to t = %g s", solver,
                     pbf.count(), a, pbf.kernel_radius(), solver == "wcsph" and "<= " or "", dt, t_end))

@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""The dam break's surge front against Martin & Moyce (1952), by resolution.
+"""The dam break's surge front and residual height against Martin & Moyce (1952), by resolution.
 
 Runs scenarios/dambreak.lua with the experiment's column (a = 2.25 in = 0.05715 m wide, 2a
-high, a slab a/2 deep between free-slip walls) at several resolutions (particles across a)
-and scores each run's front against the table of ../shared/validation/
-martin_moyce_1952_n2_2_front.csv (Z = x/a against T = t sqrt(2 g / a), T <= 3):
+high, or a high with --square; a slab a/2 deep between free-slip walls) at several
+resolutions (particles across a) and scores each run against the tables of
+../shared/validation/martin_moyce_1952_n2_{2,1}_{front,height}.csv, with their time scales:
+T = t sqrt(2 g / a) for the tall column's front, T = t sqrt(g / a) for the square column's
+and for both residual heights. Fronts are scored over the points with T <= 3:
 
     front      Z = (99.5th percentile of x + s/2) / a     (s the particle spacing)
     farthest   Z = (largest x + s/2) / a
@@ -12,13 +14,15 @@ martin_moyce_1952_n2_2_front.csv (Z = x/a against T = t sqrt(2 g / a), T <= 3):
                Z_sim interpolated linearly between thermo lines (every 0.002 s)
     shift      the delay dT that minimises the RMS of Z_sim(T_k - dT) - Z_k (the shape of
                the curve, apart from when it starts), and that RMS
+    height     H = (water height at the back wall, fix gauge) / (column height), RMS over
+               the table's points the run covers (until the surge returns from the far wall)
 
 It prints a Markdown table (RMS of both fronts, Z at T = 1, 2, 3, wall time) and writes
 docs/validation/martin_moyce.png (Z against T, each resolution a curve) unless --no-plot.
 The table's own steps of 1/9 in Z limit any simulation to about 0.03 RMS.
 
-    /usr/bin/python3 share/validation/martin_moyce.py [--binary build/pbfengine]
-        [--across 12 16 24] [-v NAME=VALUE ...] [--label TEXT] [--no-plot]
+    /usr/bin/python3 share/validation/martin_moyce.py [--binary build/pbfengine] [--square]
+        [--across 12 16 24] [-v NAME=VALUE ...] [--label TEXT] [--no-plot] [-o PNG]
 
 -v passes variables to the scenario for every run (a variant: -v relaxation=1).
 """
@@ -32,21 +36,24 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-TABLE = os.path.join(ROOT, "..", "shared", "validation", "martin_moyce_1952_n2_2_front.csv")
+DATA = os.path.join(ROOT, "..", "shared", "validation")
 A = 0.05715   # m, the experiment's column width
 G = 9.81
-T_END = 3.2   # in T: past the last scored point (T <= 3)
+# Per column (n^2): the front's time scale sqrt(n^2 g / a) and how long to run, in t sqrt(g / a):
+# past T = 3 for the front, and until the surge, back from the far wall 4a away, nears the
+# back wall (tall: tau = 2.75; square: 3.1).
+COLUMNS = {2: (math.sqrt(2 * G / A), 2.75), 1: (math.sqrt(G / A), 3.1)}
 
 
-def read_table(path):
+def read_table(path, t_max):
     rows = []
     with open(path) as f:
         for line in f:
-            if line.startswith("#") or line.startswith("T_"):
+            if line.startswith("#") or not line[0].isdigit():
                 continue
-            t, z = line.strip().split(",")
+            t, z = line.strip().split(",")[:2]
             rows.append((float(t), float(z)))
-    return [(t, z) for t, z in rows if t <= 3.0]
+    return [(t, z) for t, z in rows if t <= t_max]
 
 
 def interpolate(ts, zs, t):
@@ -57,12 +64,13 @@ def interpolate(ts, zs, t):
     return float("nan")
 
 
-def run(binary, across, extra, work):
-    """One run; returns (T list, Z front list, Z farthest list, wall seconds, particles)."""
+def run(binary, n2, across, extra, work):
+    """One run; returns (front T list, Z front list, Z farthest list, wall seconds, tau list, H list)."""
     csv_path = os.path.join(work, f"front_{across}.csv")
-    t_end = T_END / math.sqrt(2 * G / A)
+    scale, tau_end = COLUMNS[n2]
+    t_end = tau_end / math.sqrt(G / A)
     cmd = [binary, "run", os.path.join(ROOT, "scenarios", "dambreak.lua"), "-v", f"particles={across ** 3}",
-           "-v", f"a={A}", "-v", f"t_end={t_end}", "-v", "out=", "-v", f"csv={csv_path}",
+           "-v", f"a={A}", "-v", f"height={n2}", "-v", f"t_end={t_end}", "-v", "out=", "-v", f"csv={csv_path}",
            "-v", "percentile=99.5", "-v", "thermo=0.002"]
     for v in extra:
         cmd += ["-v", v]
@@ -74,10 +82,12 @@ def run(binary, across, extra, work):
     s = A / across
     with open(csv_path) as f:
         rows = list(csv.DictReader(f))
-    T = [float(r["time"]) * math.sqrt(2 * G / A) for r in rows]
+    T = [float(r["time"]) * scale for r in rows]
     front = [(float(r["front"]) + s / 2) / A for r in rows]
     far = [(float(r["far"]) + s / 2) / A for r in rows]
-    return T, front, far, wall
+    tau = [float(r["time"]) * math.sqrt(G / A) for r in rows]
+    H = [float(r["back"]) / (n2 * A) for r in rows]
+    return T, front, far, wall, tau, H
 
 
 def rms(T, Z, table):
@@ -98,25 +108,30 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--binary", default=os.path.join(ROOT, "build", "pbfengine"))
     ap.add_argument("--across", type=int, nargs="+", default=[12, 16, 24], help="particles across a")
+    ap.add_argument("--square", action="store_true", help="the square column (height a, n^2 = 1)")
     ap.add_argument("-v", dest="vars", action="append", default=[], help="NAME=VALUE for every run")
     ap.add_argument("--label", default="", help="a name for this variant in the table")
     ap.add_argument("--no-plot", action="store_true")
-    ap.add_argument("-o", "--output", default=os.path.join(ROOT, "docs", "validation", "martin_moyce.png"))
+    ap.add_argument("-o", "--output", default=None, help="figure (default docs/validation/martin_moyce[_square].png)")
     args = ap.parse_args()
-    table = read_table(TABLE)
+    n2 = 1 if args.square else 2
+    table = read_table(os.path.join(DATA, f"martin_moyce_1952_n2_{n2}_front.csv"), 3.0)
+    heights = read_table(os.path.join(DATA, f"martin_moyce_1952_n2_{n2}_height.csv"), COLUMNS[n2][1])
     runs = {}
     with tempfile.TemporaryDirectory() as work:
         for n in args.across:
-            runs[n] = run(args.binary, n, args.vars, work)
+            runs[n] = run(args.binary, n2, n, args.vars, work)
     label = args.label or (" ".join(args.vars) or "defaults")
+    print(f"{'square column (height a)' if args.square else 'column 2a high'}, {len(table)} front points "
+          f"(T <= 3), {len(heights)} height points\n")
     print("| variant | across a | RMS(Z), 99.5th percentile | RMS(Z), farthest | Z at T = 1, 2, 3 "
-          "| best delay dT, RMS then | wall time |")
-    print("|---|---|---|---|---|---|---|")
-    for n, (T, front, far, wall) in runs.items():
+          "| best delay dT, RMS then | RMS(H) | wall time |")
+    print("|---|---|---|---|---|---|---|---|")
+    for n, (T, front, far, wall, tau, H) in runs.items():
         z = ", ".join(f"{interpolate(T, front, t):.3f}" for t in (1, 2, 3))
         shifted, dT = best_shift(T, front, table)
         print(f"| {label} | {n} | {rms(T, front, table):.3f} | {rms(T, far, table):.3f} | {z} "
-              f"| {dT:.3f}, {shifted:.3f} | {wall:.1f} s |")
+              f"| {dT:.3f}, {shifted:.3f} | {rms(tau, H, heights):.3f} | {wall:.1f} s |")
     if len(runs) >= 2:
         ns = sorted(runs)
         fine, finer = runs[ns[-2]], runs[ns[-1]]
@@ -127,21 +142,29 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6, 4.5))
+    output = args.output or os.path.join(ROOT, "docs", "validation",
+                                         "martin_moyce_square.png" if args.square else "martin_moyce.png")
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4.2))
     ax.plot([t for t, _ in table], [z for _, z in table], "ks", label="Martin & Moyce (1952)")
-    for n, (T, front, far, _) in runs.items():
+    bx.plot([t for t, _ in heights], [z for _, z in heights], "ks", label="Martin & Moyce (1952)")
+    for n, (T, front, far, _, tau, H) in runs.items():
         line, = ax.plot(T, front, label=f"{n} across a, 99.5th percentile")
         ax.plot(T, far, ":", color=line.get_color(), label=f"{n} across a, farthest")
+        bx.plot(tau, H, color=line.get_color(), label=f"{n} across a")
     ax.set_xlim(0, 3.2)
-    ax.set_ylim(1, 4.2)
-    ax.set_xlabel("T = t sqrt(2g/a)")
+    ax.set_ylim(1, max(z for _, z in table) + 0.5)
+    ax.set_xlabel("T = t sqrt(g/a)" if args.square else "T = t sqrt(2g/a)")
     ax.set_ylabel("Z = x / a")
-    ax.set_title(f"Dam-break front, {label}")
-    ax.legend(fontsize=7)
-    ax.grid(alpha=0.3)
+    ax.set_title(f"Front, {label}")
+    bx.set_xlabel("t sqrt(g/a)")
+    bx.set_ylabel("H = height at the back wall / initial height")
+    bx.set_title("Residual height")
+    for x in (ax, bx):
+        x.legend(fontsize=7)
+        x.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(args.output, dpi=110)
-    print(f"\nmartin_moyce.py: figure written to {args.output}")
+    fig.savefig(output, dpi=110)
+    print(f"\nmartin_moyce.py: figure written to {output}")
 
 
 if __name__ == "__main__":
