@@ -32,7 +32,7 @@ run res_100k 100000
 run two_sided_30k 30000 one_sided=false
 run no_wall_density_30k 30000 wall_density=false
 run paper_scorr_30k 30000 scorr_k=0.1
-# It flies apart within T = 1 and then collapses into clumps, which stops the run at T = 1.37 (step 75).
+# Before the one-kernel defaults of 2026-11-23 it flew apart and collapsed into clumps at T = 1.37.
 run plain_pbf_30k 30000 one_sided=false wall_density=false scorr_k=0.1
 
 {
