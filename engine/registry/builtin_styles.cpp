@@ -24,6 +24,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_compute_density_error(r);
   register_compute_iterations(r);
   register_compute_kinetic_energy(r);
+  register_compute_potential_energy(r);
   register_compute_speed(r);
   register_compute_count(r);
   register_compute_extent(r);

@@ -38,6 +38,7 @@ void register_compute_density(StyleRegistry&);
 void register_compute_density_error(StyleRegistry&);
 void register_compute_iterations(StyleRegistry&);
 void register_compute_kinetic_energy(StyleRegistry&);
+void register_compute_potential_energy(StyleRegistry&);
 void register_compute_speed(StyleRegistry&);
 void register_compute_count(StyleRegistry&);
 void register_compute_extent(StyleRegistry&);
