@@ -50,6 +50,12 @@ local s = a / layers
 local h = 2 * s
 local depth = layers // 2 * s
 local height = (var.height or 2) * a   -- Martin & Moyce's columns: 2a (n^2 = 2) and a (n^2 = 1)
+if not (height > 0 and height < 4 * a) then
+  error(string.format("height must be above 0 and below 4 (the tank is 4a high), got %s", tostring(var.height)), 0)
+end
+if var.thermo and not (var.thermo > 0) then
+  error(string.format("thermo must be a positive time (s), got %s", tostring(var.thermo)), 0)
+end
 local dt = var.dt or 0.4 * h / math.sqrt(2 * g * height)   -- 0.4 h per step at the free-fall speed
 -- WCSPH steps are set by the sound speed c0 = 10 sqrt(2 g 2a) (fix cfl; dt above is their bound)
 local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * g * height)) or dt

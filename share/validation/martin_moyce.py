@@ -75,6 +75,8 @@ def run(binary, n2, across, extra, work):
     for v in extra:
         cmd += ["-v", v]
     start = time.time()
+    if not os.access(binary, os.X_OK):
+        sys.exit(f"martin_moyce.py: {binary}: no such executable (build it, or give --binary)")
     done = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.time() - start
     if done.returncode != 0:

@@ -58,8 +58,11 @@ def main():
     ap.add_argument("--length", type=float, default=0.4, help="L (m)")
     ap.add_argument("--depth", type=float, default=0.2, help="H (m)")
     args = ap.parse_args()
-    with open(args.csv) as f:
-        rows = list(csv.DictReader(f))
+    try:
+        with open(args.csv) as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        sys.exit(f"standing_wave.py: {args.csv}: {e.strerror}")
     if not rows or "in.left" not in rows[0] or "in.right" not in rows[0]:
         sys.exit(f"standing_wave.py: {args.csv}: needs columns time, in.left, in.right (scenarios/standing_wave.lua)")
     t = np.array([float(r["time"]) for r in rows])
