@@ -21,8 +21,8 @@
 -- accuracy target `error` takes at most that many iterations (with courant, default 0.4, and
 -- max_dt).
 -- solver: "pbf" (default) or "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000
--- particles by default, as its steps are set by the sound speed: alpha, eos and fixed_dt
--- pass to it; scenarios/dambreak_wcsph.lua runs it).
+-- particles by default, as its steps are set by the sound speed: alpha, eos, sound_speed,
+-- courant and fixed_dt pass to it; scenarios/dambreak_wcsph.lua runs it).
 -- Output beyond the text frames: images (seconds between PNG pictures, out/image_*.png),
 -- movie (an mp4 path, 50 pictures per simulated second), vtk (seconds between ParaView
 -- frames, out/vtk/frame_*.vtu and out/vtk/frame.pvd).
@@ -74,7 +74,8 @@ end
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if solver == "wcsph" then
-  require("solvers").wcsph{alpha = var.alpha, eos = var.eos, density = var.density, fixed_dt = var.fixed_dt}
+  require("solvers").wcsph{alpha = var.alpha, eos = var.eos, density = var.density, fixed_dt = var.fixed_dt,
+                           sound_speed = var.sound_speed, courant = var.courant}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, relaxation = var.relaxation, one_sided = flag(var.one_sided, true),
                          scorr_k = var.scorr_k, error = var.error, max_iterations = var.max_iterations})
@@ -107,7 +108,7 @@ pbf.thermo{every = math.max(1, math.floor((var.thermo or 0.01) / dt_typical)),
            -- a continued run keeps the first run's CSV: its own starts at the restart's step
            csv = var.csv or (out ~= "" and (var.restart and string.format("%s/thermo.%d.csv", out, pbf.step())
                                                      or out .. "/thermo.csv") or nil),
-           columns = {"step", "time", "dt", "front", "far", "back", "err.avg", "err.max", "ke"}}
+           columns = {"step", "time", "dt", "front", "far", "back", "err.avg", "err.max", "err.compression", "ke"}}
 
 print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %s%.4g s, to t = %g s", solver,
                     pbf.count(), a, pbf.kernel_radius(), solver == "wcsph" and "<= " or "", dt, t_end))

@@ -27,9 +27,11 @@ The table's own steps of 1/9 in Z limit any simulation to about 0.03 RMS.
 -v passes variables to the scenario for every run (a variant: -v relaxation=1).
 """
 import argparse
+import collections
 import csv
 import math
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -64,8 +66,14 @@ def interpolate(ts, zs, t):
     return float("nan")
 
 
+# One run's record: front T, Z of the front and of the farthest particle, wall and CPU
+# seconds, tau and H for the residual height, the time average of the mean compression and
+# the largest rho/rho0 - 1 at any thermo line.
+Run = collections.namedtuple("Run", "T front far wall cpu tau H compression worst")
+
+
 def run(binary, n2, across, extra, work):
-    """One run; returns (front T list, Z front list, Z farthest list, wall seconds, tau list, H list)."""
+    """One run of dambreak.lua; returns a Run."""
     csv_path = os.path.join(work, f"front_{across}.csv")
     scale, tau_end = COLUMNS[n2]
     t_end = tau_end / math.sqrt(G / A)
@@ -74,11 +82,14 @@ def run(binary, n2, across, extra, work):
            "-v", "percentile=99.5", "-v", "thermo=0.002"]
     for v in extra:
         cmd += ["-v", v]
-    start = time.time()
     if not os.access(binary, os.X_OK):
         sys.exit(f"martin_moyce.py: {binary}: no such executable (build it, or give --binary)")
+    used = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.time()
     done = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.time() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime + after.ru_stime - used.ru_utime - used.ru_stime
     if done.returncode != 0:
         sys.exit(f"martin_moyce.py: {' '.join(cmd)} failed:\n{done.stdout[-2000:]}{done.stderr[-2000:]}")
     s = A / across
@@ -89,7 +100,8 @@ def run(binary, n2, across, extra, work):
     far = [(float(r["far"]) + s / 2) / A for r in rows]
     tau = [float(r["time"]) * math.sqrt(G / A) for r in rows]
     H = [float(r["back"]) / (n2 * A) for r in rows]
-    return T, front, far, wall, tau, H
+    return Run(T, front, far, wall, cpu, tau, H, sum(float(r["err.compression"]) for r in rows) / len(rows),
+               max(float(r["err.max"]) for r in rows))
 
 
 def rms(T, Z, table):
@@ -129,7 +141,7 @@ def main():
     print("| variant | across a | RMS(Z), 99.5th percentile | RMS(Z), farthest | Z at T = 1, 2, 3 "
           "| best delay dT, RMS then | RMS(H) | wall time |")
     print("|---|---|---|---|---|---|---|---|")
-    for n, (T, front, far, wall, tau, H) in runs.items():
+    for n, (T, front, far, wall, _, tau, H, _, _) in runs.items():
         z = ", ".join(f"{interpolate(T, front, t):.3f}" for t in (1, 2, 3))
         shifted, dT = best_shift(T, front, table)
         print(f"| {label} | {n} | {rms(T, front, table):.3f} | {rms(T, far, table):.3f} | {z} "
@@ -149,7 +161,7 @@ def main():
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4.2))
     ax.plot([t for t, _ in table], [z for _, z in table], "ks", label="Martin & Moyce (1952)")
     bx.plot([t for t, _ in heights], [z for _, z in heights], "ks", label="Martin & Moyce (1952)")
-    for n, (T, front, far, _, tau, H) in runs.items():
+    for n, (T, front, far, _, _, tau, H, _, _) in runs.items():
         line, = ax.plot(T, front, label=f"{n} across a, 99.5th percentile")
         ax.plot(T, far, ":", color=line.get_color(), label=f"{n} across a, farthest")
         bx.plot(tau, H, color=line.get_color(), label=f"{n} across a")
