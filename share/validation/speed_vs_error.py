@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""Speed against error: what each setting of PBF and WCSPH costs and what it buys.
+
+Runs the tall column of Martin & Moyce (1952) through scenarios/dambreak.lua (the runner and
+scores of share/validation/martin_moyce.py: a = 0.05715 m, 2a high, front = 99.5th percentile
+of x plus s/2, T <= 3), changing one setting at a time around the defaults:
+
+    PBF    iterations 1 to 32; accuracy targets (error = mean compression 1%, 0.3%, 0.1%);
+           time step x1/2 and x2; resolution; precision (float against double)
+    WCSPH  sound speed x1/2 and x2 (its stiffness); Courant number x1/2 and x2; resolution;
+           precision
+
+and records for each run
+
+    cost          seconds per simulated second on one core: the run's CPU time (median of
+                  --repeats runs) with one OpenMP thread, which is its wall time on an idle
+                  core and, unlike wall time, does not grow when other jobs share the machine
+    compression   the mean compression, mean of max(rho/rho0 - 1, 0), averaged over the run
+    worst         the largest rho/rho0 - 1 of any particle at any thermo line
+    RMS(Z)        the front's error against the experiment (and the farthest particle's)
+
+It prints a Markdown table (the Pareto-optimal runs marked: no other run is both cheaper and
+closer to the experiment) and the observed order of convergence of Z(T = 1, 2, 3) and of the
+compression from the resolution runs (8, 16, 32 particles across a for PBF), and draws error
+against cost, each solver a curve through its own Pareto front, the overall front marked
+(docs/validation/speed_vs_error.png unless -o).
+
+    /usr/bin/python3 share/validation/speed_vs_error.py [--binary build/pbfengine]
+        [--float-binary build-float/pbfengine] [--across 16] [--repeats 3] [--only pbf|wcsph]
+        [--no-plot] [-o PNG]
+"""
+import argparse
+import math
+import os
+import statistics
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import martin_moyce as mm  # noqa: E402  (the runner and the scores)
+
+ROOT = mm.ROOT
+
+
+def variants(across):
+    """(solver, axis, label, particles across a, precision, -v settings) around the defaults."""
+    s = mm.A / across
+    dt = 0.4 * 2 * s / math.sqrt(2 * mm.G * 2 * mm.A)  # dambreak.lua's PBF step, 0.4 h at the free-fall speed
+    c0 = 10 * math.sqrt(2 * mm.G * 2 * mm.A)           # wcsph's default sound speed
+    courant = 0.15                                     # cfl's default
+    runs = [("pbf", "default", "defaults (4 iterations)", across, "double", [])]
+    runs += [("pbf", "iterations", f"{k} iteration" + ("s" if k > 1 else ""), across, "double", [f"iterations={k}"]) for k in (1, 2, 8, 16, 32)]
+    runs += [("pbf", "target", f"error {e:g}", across, "double", [f"error={e}", "max_iterations=100"])
+             for e in (0.01, 0.003, 0.001)]
+    runs += [("pbf", "time step", f"dt x{f:g}", across, "double", [f"dt={f * dt}"]) for f in (0.5, 2)]
+    runs += [("pbf", "resolution", f"{n} across a", n, "double", []) for n in (8, 12, 24, 32) if n != across]
+    runs += [("pbf", "precision", "float", across, "float", [])]
+    w = ["solver=wcsph"]
+    runs += [("wcsph", "default", "defaults (c0 = 10 sqrt(2 g H), Courant 0.15)", across, "double", w)]
+    runs += [("wcsph", "stiffness", f"c0 x{f:g}", across, "double", w + [f"sound_speed={f * c0}"]) for f in (0.5, 2)]
+    runs += [("wcsph", "time step", f"Courant {f * courant:g}", across, "double", w + [f"courant={f * courant}"])
+             for f in (0.5, 2)]
+    runs += [("wcsph", "resolution", f"{n} across a", n, "double", w) for n in (8, 12, 24, 32) if n != across]
+    runs += [("wcsph", "precision", "float", across, "float", w)]
+    return runs
+
+
+def pareto(points):
+    """Indices of the points (cost, error) that no other point beats on both."""
+    front = []
+    for i, (c, e) in enumerate(points):
+        if not any((c2 <= c and e2 <= e) and (c2 < c or e2 < e) for c2, e2 in points):
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][0])
+
+
+def order(coarse, mid, fine):
+    """Observed order from three resolutions, each twice the last: log2 of the ratio of changes."""
+    a, b = abs(mid - coarse), abs(fine - mid)
+    return math.log2(a / b) if a > 0 and b > 0 else float("nan")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--binary", default=os.path.join(ROOT, "build", "pbfengine"))
+    ap.add_argument("--float-binary", default=os.path.join(ROOT, "build-float", "pbfengine"),
+                    help="a build with -DPBF_REAL=float (its runs are left out if it is missing)")
+    ap.add_argument("--across", type=int, default=16, help="particles across a at the defaults")
+    ap.add_argument("--repeats", type=int, default=3, help="runs per variant; the cost is their median")
+    ap.add_argument("--only", choices=["pbf", "wcsph"], help="one solver's runs only")
+    ap.add_argument("--no-plot", action="store_true")
+    ap.add_argument("-o", "--output", default=os.path.join(ROOT, "docs", "validation", "speed_vs_error.png"))
+    args = ap.parse_args()
+    os.environ["OMP_NUM_THREADS"] = "1"  # the runs inherit it
+    if args.repeats < 1:
+        sys.exit("speed_vs_error.py: --repeats must be at least 1")
+    table = mm.read_table(os.path.join(mm.DATA, "martin_moyce_1952_n2_2_front.csv"), 3.0)
+    t_end = mm.COLUMNS[2][1] / math.sqrt(mm.G / mm.A)
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        for solver, axis, label, across, precision, settings in variants(args.across):
+            if args.only and solver != args.only:
+                continue
+            binary = args.float_binary if precision == "float" else args.binary
+            if precision == "float" and not os.access(binary, os.X_OK):
+                print(f"speed_vs_error.py: no float build at {binary}: its runs are left out", file=sys.stderr)
+                continue
+            results = [mm.run(binary, 2, across, settings, work) for _ in range(args.repeats)]
+            r = results[0]
+            cost = statistics.median(x.cpu for x in results) / t_end
+            rows.append(dict(solver=solver, axis=axis, label=label, across=across, precision=precision, cost=cost,
+                             compression=r.compression, worst=r.worst, rms=mm.rms(r.T, r.front, table),
+                             far=mm.rms(r.T, r.far, table), Z=[mm.interpolate(r.T, r.front, t) for t in (1, 2, 3)]))
+            print(f"  {solver} {label}: {cost:.1f} s per simulated s, RMS(Z) {rows[-1]['rms']:.3f}", file=sys.stderr)
+    best = set(pareto([(r["cost"], r["rms"]) for r in rows]))
+    print(f"Tall column of Martin & Moyce, {len(table)} front points (T <= 3), t_end = {t_end:.3f} s; "
+          f"cost = CPU seconds per simulated second at one thread, median of {args.repeats}; * = on the Pareto front "
+          "(cost against RMS(Z))\n")
+    print("| solver | axis | variant | across a | precision | cost | mean compression | worst rho/rho0 - 1 "
+          "| RMS(Z) | RMS(Z), farthest | Z at T = 1, 2, 3 |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for k, r in enumerate(rows):
+        mark = " *" if k in best else ""
+        print(f"| {r['solver']} | {r['axis']} | {r['label']}{mark} | {r['across']} | {r['precision']} | {r['cost']:.1f} s "
+              f"| {100 * r['compression']:.2f}% | {100 * r['worst']:.1f}% | {r['rms']:.3f} | {r['far']:.3f} "
+              f"| {', '.join(f'{z:.3f}' for z in r['Z'])} |")
+    for solver in ("pbf", "wcsph"):
+        res = {r["across"]: r for r in rows if r["solver"] == solver and r["axis"] in ("default", "resolution")}
+        trio = [args.across // 2, args.across, 2 * args.across]
+        if all(n in res for n in trio):
+            c, m, f = (res[n] for n in trio)
+            orders = ", ".join(f"{order(c['Z'][k], m['Z'][k], f['Z'][k]):.2f}" for k in range(3))
+            print(f"\n{solver}: observed order from {trio[0]}, {trio[1]}, {trio[2]} across a: Z at T = 1, 2, 3: "
+                  f"{orders}; mean compression: {order(c['compression'], m['compression'], f['compression']):.2f}")
+    if not args.no_plot:
+        plot(rows, best, args.output)
+
+
+def plot(rows, best, output):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    for ax, key, name in ((axes[0], "rms", "RMS(Z) against Martin & Moyce"),
+                          (axes[1], "compression", "mean compression (time average)")):
+        for solver, color in (("pbf", "tab:blue"), ("wcsph", "tab:red")):
+            own = [r for r in rows if r["solver"] == solver]
+            if not own:
+                continue
+            ax.scatter([r["cost"] for r in own], [r[key] for r in own], color=color, s=18, label=solver)
+            for r in own:
+                ax.annotate(r["label"].split(" (")[0], (r["cost"], r[key]), fontsize=6, xytext=(3, 2),
+                            textcoords="offset points")
+            front = [own[i] for i in pareto([(r["cost"], r[key]) for r in own])]
+            ax.plot([r["cost"] for r in front], [r[key] for r in front], color=color, lw=1)
+        overall = [rows[i] for i in pareto([(r["cost"], r[key]) for r in rows])]
+        ax.scatter([r["cost"] for r in overall], [r[key] for r in overall], s=90, facecolors="none",
+                   edgecolors="k", label="Pareto front (both solvers)")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("seconds per simulated second (one core)")
+        ax.set_ylabel(name)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    axes[0].set_title("Front error against cost")
+    axes[1].set_title("Density error against cost")
+    fig.tight_layout()
+    fig.savefig(output, dpi=110)
+    print(f"\nspeed_vs_error.py: figure written to {output}")
+
+
+if __name__ == "__main__":
+    main()
