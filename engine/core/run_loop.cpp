@@ -12,6 +12,7 @@
 #include "engine/io/restart.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/sph/separate_coincident.hpp"
 
 namespace pbf {
 
@@ -74,6 +75,13 @@ void RunLoop::prepare() {
   if (P.size() == 0) throw Error("run: no particle is left: every one was created inside a solid");
 
   check_pipeline();
+  // Particles that start on top of one another would move as one for ever (no kernel gradient
+  // between them): moved apart by a rule of positions and ids before any fix sees them. Only at
+  // step 0, the start state: later a run continues a flow (a restart, pbf.run called in a loop)
+  // and must go on as one long run would. Only particles that interact can be on top of another.
+  if (sim_.step_ == 0 &&
+      std::any_of(sim_.fixes_.begin(), sim_.fixes_.end(), [](const auto& f) { return f->needs_neighbors(); }))
+    separate_coincident(sim_);
   // Every fix declares the fields it uses; the outputs start last, after the fields no fix
   // declared are freed, so that they see what this run has.
   P.begin_declarations();

@@ -28,6 +28,12 @@
 // the wall term would with lambda = rho0 (dx . G) / |G|^2, G the walls' density gradient at
 // i: that share of the load is added to p_i the same way.
 // Kept in the field "pressure" only when asked for (parameter `pressure`, or a pressure probe).
+//
+// The step's length: the neighbour lists are built once a step, at the predicted positions,
+// so a particle that one step carries farther than kMostMove h has crossed neighbourhoods it
+// never saw, and the constraint no longer describes the fluid. The run stops there, naming the
+// step, the particle and the step that would do (docs/physics.md, "The largest stable step":
+// the dam break stays stable while its particles move up to 1.5 h a step, kStableMove).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -44,6 +50,9 @@
 namespace pbf {
 
 namespace {
+
+constexpr double kMostMove = 2.0;    // in h per step: beyond it, stop (twice the neighbour radius)
+constexpr double kStableMove = 1.5;  // in h per step: the most the dam break takes and stays stable
 
 // kappa = -1/3 sum_j V_j g(r_j) r_j^2 over the lattice of the particles' mean mass, V_j = m / rho0
 // and gradW = g(r) r_vec: sum_j V_j (p_j - p_i) gradW_ij = kappa grad p for a linear p.
@@ -249,6 +258,7 @@ class PositionBasedFluid : public Fix {
 #pragma omp parallel for schedule(static)
       for (std::size_t i = 0; i < n; ++i) add_contact_pressure(i, x[0][i], x[1][i], x[2][i], pressure[i], to_pressure);
     }
+    check_step_length(sim);
     real* v[3] = {P.vx(), P.vy(), P.vz()};
     for (int c = 0; c < 3; ++c) {
       const real* prev = prev_[c].data();
@@ -277,6 +287,38 @@ class PositionBasedFluid : public Fix {
     const real moved = (x - corrected_[0][i]) * G[0] + (y - corrected_[1][i]) * G[1] + (z - corrected_[2][i]) * G[2];
     pressure += to_pressure * rest_density_ * moved / G2 / (1 + wall_share_[i]);
   }
+  // How far particle i moved in this step, squared.
+  double moved2(const Particles& P, std::size_t i) const {
+    const double dx = double(P.x()[i]) - prev_[0][i], dy = double(P.y()[i]) - prev_[1][i],
+                 dz = double(P.z()[i]) - prev_[2][i];
+    return dx * dx + dy * dy + dz * dz;
+  }
+
+  // Stops the run when a particle moved farther than kMostMove h in this step (see the top).
+  // The farthest particle is named, the first in memory order on a tie. A particle that left
+  // the domain is the run loop's to name, after this stage: where it went says more (a wall
+  // missing) than how far.
+  void check_step_length(const Simulation& sim) const {
+    const auto& P = sim.particles();
+    const std::size_t n = P.size();
+    const double h = sim.kernel_radius(), dt = sim.timestep();
+    double most = 0;
+#pragma omp parallel for schedule(static) reduction(max : most)
+    for (std::size_t i = 0; i < n; ++i) most = std::max(most, moved2(P, i));
+    if (!(most > kMostMove * kMostMove * h * h)) return;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!sim.domain().contains(P.x()[i], P.y()[i], P.z()[i])) return;
+    std::size_t far = 0;
+    while (moved2(P, far) != most) ++far;
+    const double d = std::sqrt(most), speed = d / dt;
+    throw Error(fmt::format(
+        "particle {} moved {:.3g} m in one step, {:.3g} h (more than {} h: past neighbours the solver never saw), "
+        "at {:.3g} m/s: the time step {} s is too large (or a setting unstable, such as relaxation above 0.77); the "
+        "largest stable at this speed is about {} h / {:.3g} m/s = {:.3g} s (fix 'cfl' with courant = 0.4 keeps "
+        "every step to 0.4 h / |v|max)",
+        P.ids()[far], d, d / h, kMostMove, speed, dt, kStableMove, speed, kStableMove * h / speed));
+  }
+
   void measure_error(Simulation& sim) {
     const std::size_t n = excess_.size();
     const real* excess = excess_.data();

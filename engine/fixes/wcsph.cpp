@@ -8,8 +8,11 @@
 //               negative pressures (a stretched free surface) clamped to 0 unless kept
 //   force       a_i += -sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) gradW_ij   (Wendland C2)
 //               a_i += -2 p_i/rho_i^2 grad(rho_wall)_i                  (walls as mirrored fluid)
-// The accelerations go to the integrator's "acceleration" field (leapfrog). A density more
-// than max_density_error above rho0 stops the run: the time step is too large for c0.
+// The accelerations go to the integrator's "acceleration" field (leapfrog). Two stops, each
+// before garbage: a step longer than h / c0, beyond which the leapfrog's sound waves grow (the
+// largest stable step measured on the dam break is 1.0 h / c0: docs/physics.md, "The largest
+// stable step"), and a density more than max_density_error above rho0 (a step too large for
+// the speeds, or a start too compressed).
 #include <cmath>
 #include <fmt/format.h>
 
@@ -90,6 +93,7 @@ class Wcsph : public Fix {
     real *rho = P.data(rho_), *p = P.data(pressure_);
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     const real dt = real(sim.timestep());
+    check_timestep(sim);
 
     const auto& walls = sim.density_boundaries();
     if (density_ == "summation") {
@@ -156,6 +160,17 @@ class Wcsph : public Fix {
       real pi = tait ? b * (std::pow(rho[i] / rho0, gamma) - 1) : c2 * (rho[i] - rho0);
       p[i] = clamp && pi < 0 ? 0 : pi;
     }
+  }
+
+  // Beyond h / c0 a sound wave outruns the kernel in one step and grows; the run would go on
+  // with energy it made up (33% within 4 steps just past the limit) before any density shows it.
+  void check_timestep(const Simulation& sim) const {
+    const double h = sim.kernel_radius(), dt = sim.timestep();
+    if (dt <= h / c0_) return;
+    throw Error(fmt::format(
+        "the time step {} s is beyond WCSPH's stable limit h / c0 = {:.3g} s for the sound speed {:.4g} m/s: "
+        "sound waves would grow without bound (CFL: dt <= 0.15 h / c0 = {:.3g} s; fix 'cfl' chooses it)",
+        dt, h / c0_, c0_, 0.15 * h / c0_));
   }
 
   // The weakly compressible assumption broken: stop before the pressure explodes.

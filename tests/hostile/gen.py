@@ -774,9 +774,9 @@ def gen_lua_rules(g):
     add("scale_velocity_10", "10 m/s x 0.001 s = 0.01 m per step: legal, the walls stop it",
         scene[:3] + ["pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01, "
                      "velocity = {10, 0, 0}}"] + pipe + ["pbf.run(2)"], "accepted", "file")
-    add("scale_coincident", "two lattices on the same sites (coincident pairs): legal, no NaN",
+    add("scale_coincident", "two lattices on the same sites (coincident pairs): moved apart, with one warning",
         scene + ["pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}"] + pipe
-        + ["pbf.run(2)"], "accepted", "file")
+        + ["pbf.run(2)"], "warned", "file", "on top of another")
 
     g.section("Output intervals longer than the whole run: warned.")
     add("interval_text_longer", "dump/text interval 1 s, run of 0.002 s: warned",

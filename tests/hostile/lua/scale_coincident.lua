@@ -1,4 +1,4 @@
--- two lattices on the same sites (coincident pairs): legal, no NaN
+-- two lattices on the same sites (coincident pairs): moved apart, with one warning
 pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
 pbf.kernel_radius(0.02)
 pbf.timestep(0.001)
