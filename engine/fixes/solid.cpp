@@ -221,10 +221,10 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const real q[3] = {x[i], y[i], z[i]};
-      real b[3], d, g[3];
+      real b[3], d;
       to_frame(before_, q, b);
       for (int a = 0; a < 3; ++a) start_[a][i] = b[a];
-      start_distance_[i] = map_.distance(b[0], b[1], b[2], d, g) == SolidMap::Where::fluid ? real(1e30) : d;
+      start_distance_[i] = map_.distance(b[0], b[1], b[2], d, nullptr) == SolidMap::Where::fluid ? real(1e30) : d;
     }
   }
 
@@ -395,7 +395,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   // particle is deep inside the wall, which projection cannot undo.
   Contact keep_out(const real p0[3], real start_distance, real p[3]) const {
     real d, g[3];
-    const auto where = map_.distance(p[0], p[1], p[2], d, g);
+    const auto where = map_.distance(p[0], p[1], p[2], d, nullptr);
     const real step[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
     const real len = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
     const real hair = real(this->hair()), gap = real(this->gap()), reach = gap - hair / 2;

@@ -76,31 +76,32 @@ void SolidMap::build(const Shape& shape, bool fluid_inside, const Region& region
     corner_.push_back((b / bricks_[0]) % bricks_[1] * B);
     corner_.push_back(b / (bricks_[0] * bricks_[1]) * B);
   }
-  nodes_.assign(active_ * kNodes, Node{0, 0});
+  computed_.assign(active_ * kNodes, Node{0, 0});
 
   // Distances at the nodes, and the wall's share of each node's cell: from the distance where
   // the surface is far from the cell; near it, averaged over 4^3 sub-cells, so that the share
   // is right where the surface bends (at an edge a cell is three quarters wall, not half).
   // A shape whose distances are themselves trilinear in a grid of this cell size (a mesh's)
-  // is sampled between nodes through the map's own interpolation, at no further cost.
+  // is sampled between nodes by trilinear interpolation of the nodes, at no further cost.
   auto node_position = [&](std::size_t k, int n) {
     return Point{origin_[0] + double(corner_[3 * k] + n % N) * c, origin_[1] + double(corner_[3 * k + 1] + n / N % N) * c,
                  origin_[2] + double(corner_[3 * k + 2] + n / (N * N)) * c};
   };
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t k = 0; k < active_; ++k)
-    for (int n = 0; n < kNodes; ++n) nodes_[k * kNodes + n].d = float(sign * shape.signed_distance(node_position(k, n)));
+    for (int n = 0; n < kNodes; ++n) computed_[k * kNodes + n].d = float(sign * shape.signed_distance(node_position(k, n)));
+  const bool same_grid = shape.grid_cell() == c;
   auto distance_at = [&](const Point& q) {
-    real d, g[3];
-    if (shape.grid_cell() == c && distance(real(q[0]), real(q[1]), real(q[2]), d, g) == Where::near) return double(d);
-    return sign * shape.signed_distance(q);
+    bool near = false;
+    const double d = same_grid ? trilinear_distance(q, near) : 0;
+    return near ? d : sign * shape.signed_distance(q);
   };
   occupancy_.assign(active_ * kNodes, {0.0f, 0.0f, 0.0f, 0.0f});
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t k = 0; k < active_; ++k)
     for (int n = 0; n < kNodes; ++n) {
       const Point p = node_position(k, n);
-      const double d = nodes_[k * kNodes + n].d;
+      const double d = computed_[k * kNodes + n].d;
       auto& share = occupancy_[k * kNodes + n];
       if (std::abs(d + delta) >= c) {
         share[0] = d + delta < 0 ? 1.0f : 0.0f;
@@ -120,33 +121,82 @@ void SolidMap::build(const Shape& shape, bool fluid_inside, const Region& region
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t k = 0; k < active_; ++k) convolve(k, taps, S, h);
   occupancy_ = {};
-  // The nodes on a brick's upper faces from the bricks they belong to.
-#pragma omp parallel for schedule(static)
+  // From the node values: the spline's coefficients overshoot them at a thin wall's faces.
+  deepest_node_ = -std::numeric_limits<double>::infinity();
+  for (const Node& n : computed_) deepest_node_ = std::max(deepest_node_, -double(n.d));
+  store_padded(shape, sign);
+  computed_ = {};
+}
+
+// The spline's coefficients, and each brick's copy of them with the ring of neighbours its
+// spline reads. A spline through the node values v would need a global solve; sweeps of
+// c <- c + (v - S c) from c = v, with S the spline's own smoothing at the nodes (1/8, 3/4,
+// 1/8 along each axis), leave it off by (1 - S)^(sweeps + 1) v: exact on a flat wall
+// whatever the count, and at an edge or a corner closer to the node values with each. Two
+// sweeps: with one, a lattice's edge particles start 0.57% over rho0 and its corner particles
+// 0.85% (with two 0.35% and 0.46%); over-dense, the one-sided solver pushes them, and
+// particles of the free surface slid along the walls into the vertical edges at up to 0.08
+// m/s (docs/physics.md, "A column at rest"). A node in no brick is far from the surface,
+// where F = 0 and d_eff = d.
+void SolidMap::store_padded(const Shape& shape, double sign) {
+  auto value = [&](const std::int64_t i[3]) {
+    if (const Node* own = owned_node(i[0], i[1], i[2])) return *own;
+    const float d = float(sign * shape.signed_distance({origin_[0] + double(i[0]) * cell_, origin_[1] + double(i[1]) * cell_,
+                                                        origin_[2] + double(i[2]) * cell_}));
+    return Node{d, d};
+  };
+  auto global = [&](std::size_t k, int n, int l, int first, std::int64_t i[3]) {
+    for (int a = 0; a < 3; ++a) i[a] = corner_[3 * k + a] + (a == 0 ? n % l : a == 1 ? n / l % l : n / (l * l)) + first;
+  };
+  constexpr int kSweeps = 2;
+  const std::vector<Node> target = computed_;
+  std::vector<Node> next(computed_.size());
+  for (int sweep = 0; sweep < kSweeps; ++sweep) {
+#pragma omp parallel for schedule(dynamic, 4)
+    for (std::size_t k = 0; k < active_; ++k)
+      for (int n = 0; n < kNodes; ++n) {
+        if (n % N == B || n / N % N == B || n / (N * N) == B) continue;  // the next brick's (owned_node)
+        std::int64_t i[3];
+        global(k, n, N, 0, i);
+        double smooth[2] = {0, 0};
+        for (int q = 0; q < 27; ++q) {
+          const int o[3] = {q % 3 - 1, q / 3 % 3 - 1, q / 9 - 1};
+          double w = 1;
+          for (int a = 0; a < 3; ++a) w *= o[a] == 0 ? 0.75 : 0.125;
+          const std::int64_t j[3] = {i[0] + o[0], i[1] + o[1], i[2] + o[2]};
+          const Node c = value(j);
+          smooth[0] += w * c.d;
+          smooth[1] += w * c.d_eff;
+        }
+        const Node &c = computed_[k * kNodes + n], &v = target[k * kNodes + n];
+        next[k * kNodes + n] = Node{float(c.d + v.d - smooth[0]), float(c.d_eff + v.d_eff - smooth[1])};
+      }
+    next.swap(computed_);  // owned_node() reads the coefficients of this sweep
+  }
+  nodes_.assign(active_ * kPadded, Node{0, 0});
+#pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t k = 0; k < active_; ++k)
-    for (int n = 0; n < kNodes; ++n) {
-      const int l[3] = {n % N, n / N % N, n / (N * N)};
-      if (l[0] < B && l[1] < B && l[2] < B) continue;
-      nodes_[k * kNodes + n].d_eff = float(owned_d_eff(corner_[3 * k] + l[0], corner_[3 * k + 1] + l[1],
-                                                       corner_[3 * k + 2] + l[2], nodes_[k * kNodes + n].d));
+    for (int n = 0; n < kPadded; ++n) {
+      std::int64_t i[3];
+      global(k, n, P, -1, i);
+      nodes_[k * kPadded + n] = value(i);
     }
 }
 
 double SolidMap::deepest() const {
   for (std::int32_t b : brick_of_)
     if (b == kWall) return std::numeric_limits<double>::infinity();
-  double depth = -std::numeric_limits<double>::infinity();
-  for (const Node& n : nodes_) depth = std::max(depth, -double(n.d));
-  return depth;
+  return deepest_node_;
 }
 
-double SolidMap::owned_d_eff(std::int64_t ix, std::int64_t iy, std::int64_t iz, double fallback) const {
+const SolidMap::Node* SolidMap::owned_node(std::int64_t ix, std::int64_t iy, std::int64_t iz) const {
   const std::int64_t i[3] = {ix, iy, iz};
   for (int a = 0; a < 3; ++a)
-    if (i[a] / B >= bricks_[a]) return fallback;
+    if (i[a] < 0 || i[a] / B >= bricks_[a]) return nullptr;
   const std::int32_t brick = brick_of_[static_cast<std::size_t>(((iz / B) * bricks_[1] + iy / B) * bricks_[0] + ix / B)];
-  if (brick < 0) return fallback;
-  return nodes_[static_cast<std::size_t>(brick) * kNodes + static_cast<std::size_t>(((iz % B) * N + iy % B) * N + ix % B)]
-      .d_eff;
+  if (brick < 0) return nullptr;
+  return &computed_[static_cast<std::size_t>(brick) * kNodes +
+                    static_cast<std::size_t>(((iz % B) * N + iy % B) * N + ix % B)];
 }
 
 
@@ -216,9 +266,9 @@ void SolidMap::convolve(std::size_t brick, const std::vector<Tap>& taps, double 
       }
 
   for (int n = 0; n < kNodes; ++n) {
-    Node& out = nodes_[brick * kNodes + n];
+    Node& out = computed_[brick * kNodes + n];
     out.d_eff = out.d;
-    // Nodes on the brick's upper faces belong to the next brick (copied in build()).
+    // Nodes on the brick's upper faces belong to the next brick (copied in store_padded()).
     if (n % N == B || n / N % N == B || n / (N * N) == B) continue;
     if (!mixed || out.d < -2 * c - std::abs(delta) || out.d > h + c + std::abs(delta)) continue;
     const std::size_t centre = (static_cast<std::size_t>(n / (N * N) + R) * L + (n / N % N + R)) * L + (n % N + R);
@@ -243,7 +293,7 @@ void SolidMap::convolve(std::size_t brick, const std::vector<Tap>& taps, double 
   }
 }
 
-std::int32_t SolidMap::brick_at(real x, real y, real z, std::size_t& base, real t[3]) const {
+std::int32_t SolidMap::brick_at(real x, real y, real z, int cell[3], real t[3]) const {
   const real p[3] = {x, y, z};
   std::int64_t i[3];
   for (int a = 0; a < 3; ++a) {
@@ -251,55 +301,101 @@ std::int32_t SolidMap::brick_at(real x, real y, real z, std::size_t& base, real 
     if (!(f >= 0 && f < real(bricks_[a] * B))) return kFluid;  // beyond the map: beyond the domain
     i[a] = static_cast<std::int64_t>(f);
     t[a] = f - real(i[a]);
+    cell[a] = static_cast<int>(i[a] % B);
   }
-  const std::int32_t brick = brick_of_[static_cast<std::size_t>(
-      ((i[2] / B) * bricks_[1] + i[1] / B) * bricks_[0] + i[0] / B)];
-  if (brick >= 0)
-    base = static_cast<std::size_t>(brick) * kNodes + static_cast<std::size_t>(((i[2] % B) * N + i[1] % B) * N + i[0] % B);
-  return brick;
+  return brick_of_[static_cast<std::size_t>(((i[2] / B) * bricks_[1] + i[1] / B) * bricks_[0] + i[0] / B)];
 }
 
-// Trilinear interpolation of one member of the cell's eight nodes (`v` points at the first
-// node's), and its gradient.
-void SolidMap::interpolate(const float* v, const real t[3], real& value, real grad[3]) const {
+double SolidMap::trilinear_distance(const Point& q, bool& near) const {
+  int l[3];
+  real t[3];
+  const std::int32_t brick = brick_at(real(q[0]), real(q[1]), real(q[2]), l, t);
+  near = brick >= 0;
+  if (!near) return 0;
+  const Node* v = &computed_[static_cast<std::size_t>(brick) * kNodes + static_cast<std::size_t>((l[2] * N + l[1]) * N + l[0])];
+  double value = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const int o[3] = {corner & 1, (corner >> 1) & 1, corner >> 2};
+    double w = 1;
+    for (int a = 0; a < 3; ++a) w *= o[a] ? double(t[a]) : 1 - double(t[a]);
+    value += w * v[(o[2] * N + o[1]) * N + o[0]].d;
+  }
+  return value;
+}
+
+// The quadratic B-spline (header) of one member of the nodes, and its gradient where `grad`
+// is not null: per axis the weights of the nearest node's neighbours below, itself and above,
+// at u from it (|u| <= 1/2), then sums along x, y, z in turn.
+template <bool kGradient>
+void SolidMap::spline(const float* v, const int cell[3], const real t[3], real& value, real grad[3]) const {
   constexpr std::size_t stride = sizeof(Node) / sizeof(float);
-  auto at = [&](std::size_t node) { return real(v[node * stride]); };
-  constexpr std::size_t sx = 1, sy = N, sz = N * N;
-  const real v000 = at(0), v100 = at(sx), v010 = at(sy), v110 = at(sx + sy), v001 = at(sz), v101 = at(sx + sz),
-             v011 = at(sy + sz), v111 = at(sx + sy + sz);
-  const real tx = t[0], ty = t[1], tz = t[2];
-  // Along x first, then y, then z; the gradient from the same corners.
-  const real a00 = v000 + tx * (v100 - v000), a10 = v010 + tx * (v110 - v010), a01 = v001 + tx * (v101 - v001),
-             a11 = v011 + tx * (v111 - v011);
-  const real b0 = a00 + ty * (a10 - a00), b1 = a01 + ty * (a11 - a01);
-  value = b0 + tz * (b1 - b0);
-  const real gx0 = (v100 - v000) + ty * ((v110 - v010) - (v100 - v000)),
-             gx1 = (v101 - v001) + ty * ((v111 - v011) - (v101 - v001));
-  grad[0] = (gx0 + tz * (gx1 - gx0)) * inv_cell_;
-  grad[1] = ((a10 - a00) + tz * ((a11 - a01) - (a10 - a00))) * inv_cell_;
-  grad[2] = (b1 - b0) * inv_cell_;
+  real w[3][3], dw[3][3];
+  int first[3];
+  for (int a = 0; a < 3; ++a) {
+    const bool upper = t[a] >= real(0.5);
+    const real u = upper ? t[a] - 1 : t[a];
+    first[a] = cell[a] + (upper ? 1 : 0);  // the node below the nearest, stored one place up
+    const real below = real(0.5) - u, above = real(0.5) + u;
+    w[a][0] = real(0.5) * below * below;
+    w[a][1] = real(0.75) - u * u;
+    w[a][2] = real(0.5) * above * above;
+    dw[a][0] = -below;
+    dw[a][1] = -2 * u;
+    dw[a][2] = above;
+  }
+  const float* o = v + stride * static_cast<std::size_t>((first[2] * P + first[1]) * P + first[0]);
+  real sum = 0, gx = 0, gy = 0, gz = 0;
+  for (int c = 0; c < 3; ++c) {
+    real s = 0, sy = 0, sx = 0;  // over y: the x sums, their y derivative, the x derivatives
+    for (int b = 0; b < 3; ++b) {
+      const float* row = o + stride * static_cast<std::size_t>((c * P + b) * P);
+      const real r0 = row[0], r1 = row[stride], r2 = row[2 * stride];
+      const real along = w[0][0] * r0 + w[0][1] * r1 + w[0][2] * r2;
+      s += w[1][b] * along;
+      if constexpr (kGradient) {
+        sy += dw[1][b] * along;
+        sx += w[1][b] * (dw[0][0] * r0 + dw[0][1] * r1 + dw[0][2] * r2);
+      }
+    }
+    sum += w[2][c] * s;
+    if constexpr (kGradient) {
+      gz += dw[2][c] * s;
+      gy += w[2][c] * sy;
+      gx += w[2][c] * sx;
+    }
+  }
+  value = sum;
+  if constexpr (kGradient) {
+    grad[0] = gx * inv_cell_;
+    grad[1] = gy * inv_cell_;
+    grad[2] = gz * inv_cell_;
+  }
 }
 
 SolidMap::Where SolidMap::distance(real x, real y, real z, real& d, real grad[3]) const {
-  std::size_t base;
+  int cell[3];
   real t[3];
-  const std::int32_t brick = brick_at(x, y, z, base, t);
+  const std::int32_t brick = brick_at(x, y, z, cell, t);
   if (brick < 0) return brick == kFluid ? Where::fluid : Where::wall;
-  interpolate(&nodes_[base].d, t, d, grad);
+  const float* first = &nodes_[static_cast<std::size_t>(brick) * kPadded].d;
+  if (grad)
+    spline<true>(first, cell, t, d, grad);
+  else
+    spline<false>(first, cell, t, d, grad);
   return Where::near;
 }
 
 SolidMap::Where SolidMap::fraction(real x, real y, real z, real& f, real grad[3]) const {
-  std::size_t base;
+  int cell[3];
   real t[3];
-  const std::int32_t brick = brick_at(x, y, z, base, t);
+  const std::int32_t brick = brick_at(x, y, z, cell, t);
   if (brick < 0) {
     f = brick == kFluid ? 0 : 1;
     grad[0] = grad[1] = grad[2] = 0;
     return brick == kFluid ? Where::fluid : Where::wall;
   }
   real d_eff, slope;
-  interpolate(&nodes_[base].d_eff, t, d_eff, grad);
+  spline<true>(&nodes_[static_cast<std::size_t>(brick) * kPadded].d_eff, cell, t, d_eff, grad);
   f = wall_->fraction_both_sides(d_eff, slope);
   for (int a = 0; a < 3; ++a) grad[a] *= slope;
   return Where::near;
