@@ -135,6 +135,10 @@ def main():
     ap.add_argument("--t-end", type=float, default=0.5)
     ap.add_argument("-v", dest="vars", action="append", default=[], help="NAME=VALUE for every run")
     args = ap.parse_args()
+    if args.particles < 8:
+        ap.error(f"--particles must be at least 8 (a column two particles across), got {args.particles}")
+    if not (math.isfinite(args.t_end) and args.t_end > 0):
+        ap.error(f"--t-end must be a positive number of seconds, got {args.t_end}")
     if not os.access(args.binary, os.X_OK):
         sys.exit(f"stable_step.py: {args.binary}: no such executable (build it, or give --binary)")
     layers = max(4, round(args.particles ** (1 / 3)))
