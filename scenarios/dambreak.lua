@@ -19,7 +19,7 @@
 -- compare the solver variants of docs/physics.md (default: the styles' defaults, pbfengine
 -- help pbf); dt_iterations: PBF's time step chosen by fix cfl, the largest in which the
 -- accuracy target `error` takes at most that many iterations (with courant, default 0.4, and
--- max_dt).
+-- max_dt). support: the kernel radius h in spacings (default 2).
 -- solver: "pbf" (default) or "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000
 -- particles by default, as its steps are set by the sound speed: alpha, eos, sound_speed,
 -- courant and fixed_dt pass to it; scenarios/dambreak_wcsph.lua runs it).
@@ -47,7 +47,7 @@ local g = 9.81
 -- column); kernel radius h = 2 s.
 local layers = math.max(4, math.floor((N) ^ (1 / 3) + 0.5))
 local s = a / layers
-local h = 2 * s
+local h = (var.support or 2) * s   -- the kernel radius, in spacings
 local depth = layers // 2 * s
 local height = (var.height or 2) * a   -- Martin & Moyce's columns: 2a (n^2 = 2) and a (n^2 = 1)
 if not (height > 0 and height < 4 * a) then

@@ -16,6 +16,8 @@
 -- amplitude (A, default 0.05 H), periods (how long to run, default 5 linear periods),
 -- thickness (the slab's, in spacings, default 4), iterations (pbf, default the style's),
 -- xsph (XSPH c, default 0.01), contact and wall_density (the box's, default the style's),
+-- support (the kernel radius h in spacings, default 2; 2.5 keeps the period within 1% of
+-- linear theory, 2 runs it 7 to 10% fast: docs/validation/standing_wave.md),
 -- dt (default 0.4 h / sqrt(2 g H)), csv (thermo CSV, default none), out (frame directory,
 -- default none), solver ("pbf", the default, or "wcsph": share/lua/solvers.lua).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
@@ -26,7 +28,7 @@ local L = var.length or 0.4
 local H = var.depth or 0.2
 local A = var.amplitude or 0.05 * H
 local W = (var.thickness or 4) * s          -- the slab's thickness
-local h = 2 * s
+local h = (var.support or 2) * s          -- the kernel radius, in spacings
 local k = math.pi / L
 local period = 2 * math.pi / math.sqrt(g * k * math.tanh(k * H))
 local dt = var.dt or 0.4 * h / math.sqrt(2 * g * H)
