@@ -20,6 +20,7 @@
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/vectors.hpp"
 #include "engine/core/interrupt.hpp"
 #include "engine/core/names.hpp"
 #include "engine/core/simulation.hpp"
@@ -159,6 +160,11 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
   run->add_option("--log-level", level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+  std::string vectors = "auto";
+  run->add_option("--vectors", vectors,
+                  "widest vector instructions of the pair loops: auto (the widest this machine has), avx512, avx2, "
+                  "sse4 or none; every choice gives the same bits")
+      ->type_name("NAME");
 
   auto* help = app.add_subcommand("help", "list styles, or one style's parameters");
   std::string style;
@@ -224,6 +230,11 @@ int main(int argc, char** argv) {
                                           threads, thread_range()));
   }
   if (log_path.empty()) return command_line_error("--log needs a file name, or 'none' for no log");
+  try {
+    pbf::limit_vectors(vectors);
+  } catch (const pbf::Error& e) {
+    return command_line_error(fmt::format("--vectors: {}", e.what()));
+  }
   // Opening the log truncates it: never the script (compared as absolute paths with links
   // resolved, as either may not exist yet).
   const auto resolved = [](const std::string& path) {
@@ -243,8 +254,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "warning: cannot open the log file '%s' (%s); the run goes on without a log\n",
                    log_path.c_str(), why.c_str());
     else
-      pbf::log_file::write(fmt::format("command: {}\nstarted: {}\nversion: pbfengine {}\nthreads: {}\n",
-                                       command_line(argc, argv), iso8601_now(), PBF_VERSION, threads));
+      pbf::log_file::write(fmt::format("command: {}\nstarted: {}\nversion: pbfengine {}\nthreads: {}\nvectors: {}\n",
+                                       command_line(argc, argv), iso8601_now(), PBF_VERSION, threads,
+                                       pbf::vectors_in_use()));
   }
   omp_set_num_threads(threads);
   spdlog::info("pbfengine {} on {} OpenMP thread{} (this machine runs {} hardware threads)", PBF_VERSION, threads,

@@ -34,17 +34,17 @@ Options:
                     or an earlier check when COMMAND is left out, wrote
   each FILE         FILE (relative to the repository) holds one-line scripts, one a line
                     (blank lines and lines starting with '#' skipped; a script that ends in
-                    the Lua comment `-- double` prints what a double-precision build
+                    the Lua comment `-- numbers` prints what the default (single-precision) build
                     prints); each runs alone as
                     `pbfengine run e.lua`, and the block's lines (or, before a table, the
                     cells of column `column N`, each one code span) are the last line of
                     each one's standard error (with stdout: standard output; with grep: the
                     last line that holds TEXT); lines with numbers are compared only in a
-                    double-precision build
+                    build of the reference precision (REFERENCE, the default build's)
   setup SCRIPT      with each: run `pbfengine run SCRIPT` (a repository path) first
   column N          with each before a table: the column (1-based) that holds the messages
   mask              compare with every number masked and runs of blanks shrunk (timings)
-  double            the block's numbers are those of a double-precision build (assumed of
+  numbers           the block's numbers are those of the reference build (assumed of
                     any block that shows a decimal fraction or an exponent)
   log               keep the log file (else the checker adds `--log none` to every run)
   slow              run in the background while the other checks go on
@@ -61,8 +61,9 @@ with the whole output, to be cut down by hand).
 Commands run from a scratch directory under $TMPDIR that holds links to the repository's
 scenarios/, share/ and docs/ and build/pbfengine (the binary under test), so paths read as
 from the repository root and outputs land in the scratch directory; it is removed at the
-end (--keep keeps it). In a single-precision build (--real float, or detected from a
-restart the binary writes) the blocks with numbers still run, but are not compared.
+end (--keep keeps it). The docs show the numbers of the default build, single precision
+(REFERENCE); in a build of the other precision (--real double, or detected from a restart
+the binary writes) the blocks with numbers still run, but are not compared.
 --update rewrites every block that fails from what was printed (blocks that pass keep
 their text); a block whose shape changed must be edited by hand.
 """
@@ -77,6 +78,8 @@ import struct
 import subprocess
 import sys
 import tempfile
+
+REFERENCE = "float"  # the precision whose numbers the docs show: the default build's
 import threading
 import time
 from pathlib import Path
@@ -84,7 +87,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 GENERATED = {"docs/styles.md"}
 OPTIONS = {"stdout", "stderr", "exit", "head", "tail", "excerpt", "grep", "file", "each", "setup", "column",
-           "mask", "double", "log", "slow"}
+           "mask", "numbers", "log", "slow"}
 TIMEOUT = 300  # s per command: a machine shared with other runs can be many times slower
 
 FENCE = re.compile(r"^(\s*)(```+|~~~+)\s*([^`\s]*)")
@@ -364,7 +367,7 @@ class Checker:
         return words, opts
 
     def number_bearing(self, block, opts):
-        if "double" in opts:
+        if "numbers" in opts:
             return True
         text = "\n".join(canonical(block.lines))
         return bool(FRACTION.search(VERSION.sub("", text)))
@@ -491,9 +494,9 @@ class Checker:
             if block.table:
                 return False, None, f"{len(scripts)} scripts in {opts['each']} but {len(shown)} rows", None
             return False, messages, f"{len(scripts)} scripts in {opts['each']} but {len(shown)} messages shown", None
-        if self.real != "double":  # lines with numbers of a double build, or so marked: not compared
+        if self.real != REFERENCE:  # lines with numbers of the reference build, or so marked: not compared
             keep = [k for k, x in enumerate(shown) if not FRACTION.search(VERSION.sub("", x))
-                    and not scripts[k].rstrip().endswith("-- double") and "double" not in opts]
+                    and not scripts[k].rstrip().endswith("-- numbers") and "numbers" not in opts]
             ok = [canonical(shown)[k] for k in keep] == [canonical(messages)[k] for k in keep] and not why
             self.skipped += len(shown) - len(keep)
         else:
@@ -566,10 +569,10 @@ class Checker:
                 if self.verbose:
                     print(f"{block.path}:{block.lineno}: ok")
                 return None
-            if self.real != "double" and bearing:
+            if self.real != REFERENCE and bearing:
                 self.skipped += 1
                 if self.verbose:
-                    print(f"{block.path}:{block.lineno}: skipped (numbers of a double-precision build)")
+                    print(f"{block.path}:{block.lineno}: skipped (numbers of a {REFERENCE}-precision build)")
                 return None
         if self.update and new is not None:
             self.say(f"{block.path}:{block.lineno}: updated ({why})")

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "engine/core/vectors.hpp"
 #include "engine/core/names.hpp"
 #include "test_util.hpp"
 
@@ -143,14 +144,15 @@ TEST(LogFile, HoldsAHeaderThenWhatTheRunPrinted) {
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_EQ(r.err, "");
   const std::string log = read_file(dir / "log.pbfengine");
-  // The header: the command line, the start time, the version and the threads.
+  // The header: the command line, the start time, the version, the threads and the vectors.
   const std::string command = fmt::format("command: {} run a.lua -v unused=1 --threads 1\nstarted: ", PBF_BINARY);
   ASSERT_EQ(log.rfind(command, 0), 0u) << log;
   const std::string time = log.substr(command.size(), log.find('\n', command.size()) - command.size());
   EXPECT_EQ(time.size(), 25u) << time;  // 2026-11-21T14:05:09+01:00
   EXPECT_EQ(time[10], 'T');
   EXPECT_EQ(time[22], ':');
-  const std::string header = command + time + "\nversion: pbfengine " + PBF_VERSION + "\nthreads: 1\n";
+  const std::string header = command + time + "\nversion: pbfengine " + PBF_VERSION + "\nthreads: 1\nvectors: " +
+                             pbf::vectors_in_use() + "\n";
   ASSERT_EQ(log.rfind(header, 0), 0u) << log;
   // Then exactly what the run printed: Lua's print, thermo, the timing table, warnings.
   EXPECT_EQ(log.substr(header.size()), r.out);

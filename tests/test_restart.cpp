@@ -19,6 +19,7 @@
 #include "test_util.hpp"
 
 using namespace pbf;
+using pbf::test::LogCapture;
 using pbf::test::read_file;
 using pbf::test::run_engine;
 using pbf::test::scenario;
@@ -61,19 +62,50 @@ TEST(Restart, ContinuedRunIsBitIdenticalAtOneAndTwoThreads) {
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "restart.30.restart"));
 }
 
-// A small valid restart to damage.
-std::string valid_restart(const std::filesystem::path& dir) {
-  Simulation sim;
+// A small lattice, 5^3 particles moving at v, in its 0.2 m box.
+void small_scene(Simulation& sim, const double v[3]) {
   Domain d;
   d.hi[0] = d.hi[1] = d.hi[2] = 0.2;
   sim.set_domain(d);
   sim.set_kernel_radius(0.02);
   sim.set_timestep(0.001);
-  const double lo[3] = {0.05, 0.05, 0.05}, hi[3] = {0.1, 0.1, 0.1}, v[3] = {0, 0, 0};
+  const double lo[3] = {0.05, 0.05, 0.05}, hi[3] = {0.1, 0.1, 0.1};
   add_lattice(sim, lo, hi, 0.01, v);
+}
+
+// A small valid restart to damage.
+std::string valid_restart(const std::filesystem::path& dir) {
+  Simulation sim;
+  const double v[3] = {0, 0, 0};
+  small_scene(sim, v);
   const std::string path = (dir / "valid.restart").string();
   write_restart(sim, path);
   return path;
+}
+
+// A restart of the other precision: read with a warning, each value converted.
+TEST(Restart, TheOtherPrecisionIsConvertedWithAWarning) {
+  const auto dir = temp_dir("restart-precision");
+  Simulation sim;
+  const double v[3] = {0.1, -0.3, 0.7};
+  small_scene(sim, v);
+  const std::uint32_t other = sizeof(real) == 8 ? 4 : 8;
+  const std::string path = (dir / "other.restart").string();
+  write_restart(sim, path, other);
+  // What a round trip through the other precision gives each value.
+  auto through_other = [&](real value) {
+    return other == 4 ? static_cast<real>(static_cast<float>(value)) : static_cast<real>(static_cast<double>(value));
+  };
+  Simulation back;
+  LogCapture log;
+  read_restart(back, path);
+  EXPECT_EQ(log.count("read into this"), 1) << log.text();
+  ASSERT_EQ(back.particles().size(), sim.particles().size());
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) {
+    EXPECT_EQ(back.particles().x()[i], through_other(sim.particles().x()[i]));
+    EXPECT_EQ(back.particles().vy()[i], through_other(sim.particles().vy()[i]));
+    EXPECT_EQ(back.particles().mass()[i], through_other(sim.particles().mass()[i]));
+  }
 }
 
 void put_u32(std::string& bytes, std::size_t at, std::uint32_t v) { std::memcpy(&bytes[at], &v, 4); }
@@ -100,6 +132,25 @@ void expect_rejected(const std::filesystem::path& dir, const std::string& bytes,
   }
   EXPECT_EQ(sim.particles().size(), 0u);
   EXPECT_EQ(sim.kernel_radius(), 0.0);
+}
+
+// Into single precision, a double beyond float's range is refused, naming field and particle.
+TEST(Restart, ADoubleBeyondSinglePrecisionIsRefusedByName) {
+  if (sizeof(real) == 8) GTEST_SKIP() << "a double-precision build reads every double";
+  const auto dir = temp_dir("restart-range");
+  const std::string path = valid_restart(dir);
+  Simulation sim;
+  read_restart(sim, path);
+  sim.particles().vz()[0] = real(0.7);
+  write_restart(sim, path, 8);
+  std::string bytes = read_file(path);
+  const double seven = static_cast<double>(real(0.7)), huge = 1e39;
+  const std::size_t at = bytes.find(std::string(reinterpret_cast<const char*>(&seven), 8));
+  ASSERT_NE(at, std::string::npos);
+  std::memcpy(&bytes[at], &huge, 8);
+  put_u32(bytes, 20, static_cast<std::uint32_t>(
+                         crc32_z(0, reinterpret_cast<const unsigned char*>(bytes.data()) + 32, bytes.size() - 32)));
+  expect_rejected(dir, bytes, "field 'velocity' of particle 0 is 1e+39, beyond this build's single precision");
 }
 
 TEST(Restart, DamagedFilesAreClearErrors) {
@@ -129,9 +180,8 @@ TEST(Restart, DamagedFilesAreClearErrors) {
   expect_rejected(dir, bytes, "other byte order");
 
   bytes = good;
-  put_u32(bytes, 16, sizeof(real) == 8 ? 4 : 8);
-  expect_rejected(dir, bytes, sizeof(real) == 8 ? "written by a single (float)-precision build"
-                                                : "written by a double-precision build");
+  put_u32(bytes, 16, 2);
+  expect_rejected(dir, bytes, "a real of 2 bytes is no precision");
 
   bytes = good;
   put_u64(bytes, 24, std::uint64_t{1} << 62);  // an absurd size: compared with the file, never allocated

@@ -25,32 +25,10 @@
 
 using namespace pbf;
 using pbf::test::run_engine;
+using pbf::test::LogCapture;
 using pbf::test::scenario;
 
 namespace {
-
-// What the engine logs while it lives (added to the default logger's sinks).
-class LogCapture {
- public:
-  LogCapture() : sink_(std::make_shared<spdlog::sinks::ostream_sink_mt>(text_)) {
-    spdlog::default_logger()->sinks().push_back(sink_);
-  }
-  ~LogCapture() {
-    auto& sinks = spdlog::default_logger()->sinks();
-    sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
-  }
-  std::string text() const { return text_.str(); }
-  int count(const std::string& words) const {
-    const std::string all = text();
-    int found = 0;
-    for (auto at = all.find(words); at != std::string::npos; at = all.find(words, at + 1)) ++found;
-    return found;
-  }
-
- private:
-  std::ostringstream text_;
-  std::shared_ptr<spdlog::sinks::ostream_sink_mt> sink_;
-};
 
 constexpr double kS = 0.01, kH = 2 * kS;
 // The sites that get duplicates: a pair inside, a pair against the wall y = 0.1 (its first

@@ -18,5 +18,5 @@ write("trunc.restart", good:sub(1, -101))
 write("corrupt.restart", patch(40, string.char(good:byte(41) ~ 0xff)))
 write("bom.restart", patch(12, string.pack("<I4", 0x01020305)))
 write("swapped.restart", patch(12, string.pack(">I4", 0x01020304)))   -- written big-endian
-write("float.restart", patch(16, string.pack("<I4", string.unpack("<I4", good, 17) == 8 and 4 or 8)))
+write("precision.restart", patch(16, string.pack("<I4", 2)))
 write("version.restart", patch(8, string.pack("<I4", 2)))

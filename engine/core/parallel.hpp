@@ -12,7 +12,12 @@ inline constexpr std::size_t kReduceBlock = 2048;
 template <class Term>
 double deterministic_sum(std::size_t n, Term&& term) {
   const std::size_t blocks = (n + kReduceBlock - 1) / kReduceBlock;
-  std::vector<double> partial(blocks, 0.0);
+  // Kept between calls by the thread that takes the sum (outside parallel regions), so that a
+  // step allocates nothing; the threads of the loop write through a plain pointer (each has
+  // a thread_local of its own).
+  static thread_local std::vector<double> kept;
+  kept.assign(blocks, 0.0);
+  double* partial = kept.data();
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t end = (b + 1) * kReduceBlock < n ? (b + 1) * kReduceBlock : n;
@@ -21,7 +26,7 @@ double deterministic_sum(std::size_t n, Term&& term) {
     partial[b] = s;
   }
   double total = 0;
-  for (double s : partial) total += s;
+  for (std::size_t b = 0; b < blocks; ++b) total += partial[b];
   return total;
 }
 

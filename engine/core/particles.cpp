@@ -121,18 +121,26 @@ void Particles::reset(std::vector<std::int64_t> ids) {
     if (field.live) fill(field);
 }
 
-void Particles::permute(const std::vector<std::uint32_t>& order) {
-  std::vector<real> scratch(size());
+void Particles::permute(std::span<const std::uint32_t> order, real* scratch) {
+  const std::size_t n = order.size();
+  std::vector<real> own;
+  if (!scratch) {
+    own.resize(n);
+    scratch = own.data();
+  }
   for (auto& field : fields_) {
     for (auto& component : field.data) {
+      real* values = component.data();
 #pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < order.size(); ++i) scratch[i] = component[order[i]];
-      component.swap(scratch);
+      for (std::size_t i = 0; i < n; ++i) scratch[i] = values[order[i]];
+#pragma omp parallel for simd schedule(static)
+      for (std::size_t i = 0; i < n; ++i) values[i] = scratch[i];
     }
   }
-  std::vector<std::int64_t> ids(size());
-  for (std::size_t i = 0; i < order.size(); ++i) ids[i] = ids_[order[i]];
-  ids_.swap(ids);
+  id_scratch_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) id_scratch_[i] = ids_[order[i]];
+  ids_.swap(id_scratch_);
 }
 
 std::vector<std::uint32_t> Particles::index_of_id() const {
@@ -142,7 +150,7 @@ std::vector<std::uint32_t> Particles::index_of_id() const {
 }
 
 void check_memory_for(const Particles& particles, double count, const std::string& what) {
-  const double bytes_per_particle = 1000.0 * (sizeof(real) == 4 ? 0.7 : 1.0);
+  const double bytes_per_particle = sizeof(real) == 4 ? 300.0 : 400.0;
   const double needed = (static_cast<double>(particles.size()) + count) * bytes_per_particle;
   const double machine = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   if (machine > 0 && !(needed <= machine))

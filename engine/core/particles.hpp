@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -89,7 +90,8 @@ class Particles {
   std::size_t remove(const std::vector<char>& drop);
 
   // Reorders every field: particle i of the result is particle order[i] of before.
-  void permute(const std::vector<std::uint32_t>& order);
+  // `scratch`: room for one value per particle (else permute takes its own).
+  void permute(std::span<const std::uint32_t> order, real* scratch = nullptr);
   // index_of_id()[k]: the current index of the particle with id k.
   std::vector<std::uint32_t> index_of_id() const;
 
@@ -103,11 +105,14 @@ class Particles {
   void fill(Field& field) const;  // zeroed arrays for every particle
   std::vector<Field> fields_;
   std::vector<std::int64_t> ids_;
+  // permute()'s buffer for the ids, kept so that reordering allocates nothing.
+  std::vector<std::int64_t> id_scratch_;
 };
 
 // Throws, before anything is allocated, when `count` more particles (on top of those there
-// are) would not fit in this machine's memory at about 1 kB each, the cost measured for the
-// PBF dam break in double precision, neighbour lists included. `what` names the request.
+// are) would not fit in this machine's memory at 300 bytes each in single precision and 400 in
+// double, the budgets of the PBF dam break measured at a million particles (docs/performance.md).
+// `what` names the request.
 void check_memory_for(const Particles& particles, double count, const std::string& what);
 
 }  // namespace pbf

@@ -239,10 +239,12 @@ void RunLoop::step() {
   auto& P = sim_.particles_;
   const std::int64_t number = sim_.step_ + 1;  // the step being computed
   if (neighbors_ && sim_.reorder_every_ > 0 && sim_.step_ % sim_.reorder_every_ == 0) {
-    // Neighbours near in memory: particles in grid-cell order (deterministic, stable).
+    // Neighbours near in memory: particles in grid-cell order, by id within a cell, so that
+    // memory order, and with it every neighbour list, depends on positions and ids only.
     const double t0 = now();
     sim_.grid_.bin(P.x(), P.y(), P.z(), P.size(), sim_.domain_, sim_.h_);
-    P.permute(sim_.grid_.sorted_order());
+    sim_.grid_.order_cells_by(P.ids());
+    P.permute(sim_.grid_.sorted_order(), sim_.scratch(0));
     sim_.positions_changed();
     timing_.add(row_reorder_, now() - t0);
   }

@@ -9,6 +9,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/io/bytes.hpp"
+#include "engine/sph/pair_sums.hpp"
 #include "engine/sph/resolution.hpp"
 
 namespace pbf {
@@ -225,16 +226,34 @@ const std::vector<real>& Simulation::summed_density() {
   const real *x = particles_.x(), *y = particles_.y(), *z = particles_.z(), *m = particles_.mass();
   const Kernels& K = kernels_;
   for (DensityBoundary* b : boundaries_) b->prepare(*this);
+  density_sums(PairInput{grid_, x, y, z, m, uniform_mass(m, n), K, n}, density_.data());
+  if (!boundaries_.empty()) {
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    real rho = m[i] * K.W(0);
-    grid_.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) { rho += m[j] * K.W(r2); });
-    real grad[3] = {0, 0, 0};
-    for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], rho, grad);
-    density_[i] = rho;
+    for (std::size_t i = 0; i < n; ++i) {
+      real grad[3] = {0, 0, 0};
+      for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], density_[i], grad);
+    }
   }
   density_version_ = positions_version_;
   return density_;
+}
+
+const std::vector<real>& Simulation::summed_volume() {
+  const std::vector<real>& rho = summed_density();
+  if (volume_version_ == density_version_ && volume_.size() == rho.size()) return volume_;
+  const std::size_t n = rho.size();
+  volume_.resize(n);
+  const real* m = particles_.mass();
+#pragma omp parallel for simd schedule(static)
+  for (std::size_t i = 0; i < n; ++i) volume_[i] = m[i] / rho[i];
+  volume_version_ = density_version_;
+  return volume_;
+}
+
+real* Simulation::scratch(std::size_t k) {
+  if (k >= kScratchArrays) throw Error(fmt::format("scratch array {} asked for; there are {}", k, kScratchArrays));
+  scratch_[k].resize(particles_.size());
+  return scratch_[k].data();
 }
 
 void Simulation::check_inside_domain() const {

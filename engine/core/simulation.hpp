@@ -111,6 +111,14 @@ class Simulation {
   void refresh_neighbors();
   // SPH density with wall contributions, at the current positions over the current lists.
   const std::vector<real>& summed_density();
+  // Each particle's volume m / rho over that density (what the velocity sums weigh by).
+  const std::vector<real>& summed_volume();
+  // Per-particle scratch arrays (k < kScratchArrays), one value per particle: for values a
+  // hook computes and uses up before it returns. Their contents are undefined when a hook
+  // starts. Shared by all fixes (hooks run one at a time), so that a pipeline holds a few
+  // such arrays, not a few per fix: memory per particle is the engine's limit on size.
+  static constexpr std::size_t kScratchArrays = 6;
+  real* scratch(std::size_t k);
   // The density the solver uses, for measurements between steps (computes, dumps): the
   // "density" field of a solver that keeps one (wcsph, summed or integrated), else the SPH
   // sum over freshly built lists. One value per particle, in memory order.
@@ -159,7 +167,9 @@ class Simulation {
 
   NeighborGrid grid_;
   std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0;
-  std::vector<real> density_;
+  std::vector<real> density_, volume_;
+  std::uint64_t volume_version_ = 0;
+  std::vector<real> scratch_[kScratchArrays];
   std::vector<DensityBoundary*> boundaries_;
   std::vector<const SolidBody*> solids_;
 };

@@ -2,6 +2,8 @@
 // particle count N, then N lines "x y z vx vy vz" in input (id) order, each number in the
 // shortest form that reads back to the same value. With other fields, each line holds
 // their components in the order given, after a "# names" comment line.
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -15,6 +17,7 @@ namespace pbf {
 namespace {
 
 const Names kOriginalFields = {"position", "velocity"};
+constexpr std::size_t kBlockLines = 65536;
 
 class DumpText : public Dump {
  public:
@@ -42,29 +45,35 @@ class DumpText : public Dump {
       else fields().gather(sim, k, values[k]);
     }
     fmt::format_to(std::back_inserter(buf), "{}\n", n);
-    // Formatting numbers is the cost: each thread formats one contiguous range of lines into
-    // its own buffer, and the buffers are written in order, so the file is the same bytes.
-    const int chunks = omp_get_max_threads();
-    std::vector<fmt::memory_buffer> lines(static_cast<std::size_t>(chunks));
-#pragma omp parallel for schedule(static, 1)
-    for (int chunk = 0; chunk < chunks; ++chunk) {
-      auto out = std::back_inserter(lines[static_cast<std::size_t>(chunk)]);
-      for (std::size_t i = n * chunk / chunks; i < n * (chunk + 1) / chunks; ++i) {
-        const char* separator = "";
-        for (std::size_t k = 0; k < fields().size(); ++k) {
-          const int nc = fields().components(k);
-          for (int c = 0; c < nc; ++c) {
-            if (fields().is_id(k)) fmt::format_to(out, "{}{}", separator, ids[i]);
-            else fmt::format_to(out, "{}{}", separator, values[k][i * nc + c]);
-            separator = " ";
-          }
-        }
-        fmt::format_to(out, "\n");
-      }
-    }
     AtomicFile file(path);  // a full disk leaves no cut-off frame behind
     file.write(buf.data(), buf.size());
-    for (const auto& part : lines) file.write(part.data(), part.size());
+    // Formatting numbers is the cost: each thread formats one contiguous range of lines into
+    // its own buffer, and the buffers are written in order, so the file is the same bytes.
+    // A block of lines at a time, so that the text never takes more memory than one block's.
+    const int chunks = omp_get_max_threads();
+    std::vector<fmt::memory_buffer> lines(static_cast<std::size_t>(chunks));
+    for (std::size_t first = 0; first < n; first += kBlockLines) {
+      const std::size_t count = std::min(kBlockLines, n - first);
+#pragma omp parallel for schedule(static, 1)
+      for (int chunk = 0; chunk < chunks; ++chunk) {
+        auto& text = lines[static_cast<std::size_t>(chunk)];
+        text.clear();
+        auto out = std::back_inserter(text);
+        for (std::size_t i = first + count * chunk / chunks; i < first + count * (chunk + 1) / chunks; ++i) {
+          const char* separator = "";
+          for (std::size_t k = 0; k < fields().size(); ++k) {
+            const int nc = fields().components(k);
+            for (int c = 0; c < nc; ++c) {
+              if (fields().is_id(k)) fmt::format_to(out, "{}{}", separator, ids[i]);
+              else fmt::format_to(out, "{}{}", separator, values[k][i * nc + c]);
+              separator = " ";
+            }
+          }
+          fmt::format_to(out, "\n");
+        }
+      }
+      for (const auto& part : lines) file.write(part.data(), part.size());
+    }
     file.commit();
   }
 };

@@ -44,6 +44,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
+#include "engine/sph/pair_sums.hpp"
 #include "engine/sph/point_query.hpp"
 #include "engine/core/simulation.hpp"
 
@@ -113,6 +114,7 @@ class PositionBasedFluid : public Fix {
       first_wall_ = lattice_wall_density(P.mean_mass(), sim.kernels(), sim.rest_density());
       rest_density_ = real(sim.rest_density());
     }
+    uniform_mass_ = uniform_mass(P.mass(), P.size());
     S0_ = lattice_gradient_sum(P.mean_mass(), sim.kernels(), sim.rest_density());
     scorr_w_ = sim.kernels().W(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
   }
@@ -153,31 +155,25 @@ class PositionBasedFluid : public Fix {
     real* pressure = keep_pressure_ ? P.data(pressure_) : nullptr;
     const real to_pressure = real(-kappa_) * rho0 * inv_dt * inv_dt, inv_first_wall = real(1 / first_wall_);
     const auto& walls = sim.density_boundaries();
-    for (auto& c : dp_) c.resize(n);
     // A fixed count measures only in its last iteration, for the report.
     const bool measure = adaptive() || iteration + 1 == iterations_;
-    if (measure) excess_.resize(n);
-    real* excess = excess_.data();
-    wall_grad_.resize(3 * walls.size());
-    for (auto& c : wall_grad_) c.resize(n);
     if (pressure) wall_share_.resize(n);
 
+    // The fluid's sums (engine/sph/pair_sums.hpp), then the walls and the multiplier. Scratch
+    // arrays are reused as their values are used up, particle by particle: the fluid's
+    // gradient becomes the compression (for the report), then the corrections; its density
+    // and squared gradients become the first wall's gradient (see wall_gradients).
+    real *grad_x = sim.scratch(0), *grad_y = sim.scratch(1), *grad_z = sim.scratch(2), *fluid_rho = sim.scratch(3),
+         *grad_sq = sim.scratch(4);
+    real* excess = grad_x;  // max(rho/rho0 - 1, 0) of each particle
+    wall_gradients(sim, walls.size());
+    const PairInput pairs{grid, x, y, z, m, uniform_mass_, K, n};
+    constraint_sums(pairs, inv_rho0, fluid_rho, grad_x, grad_y, grad_z, grad_sq);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      real rho = m[i] * K.W(0);
-      real gi[3] = {0, 0, 0};
-      real sum_sq = 0;
-      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-        real w, gw;
-        K.W_and_grad_factor(r2, w, gw);
-        rho += m[j] * w;
-        const real g = m[j] * inv_rho0 * gw;  // grad_j C_i = -g r_ij
-        gi[0] += g * dx;
-        gi[1] += g * dy;
-        gi[2] += g * dz;
-        sum_sq += g * g * r2;
-      });
-      const real fluid_rho = rho;
+      const real fluid = fluid_rho[i], squares = grad_sq[i];
+      real rho = fluid;
+      real gi[3] = {grad_x[i], grad_y[i], grad_z[i]};
       // Each wall's gradient, kept for the correction pass (the positions do not change in between).
       for (std::size_t b = 0; b < walls.size(); ++b) {
         real wall_grad[3] = {0, 0, 0};
@@ -190,49 +186,37 @@ class PositionBasedFluid : public Fix {
       real C = rho * inv_rho0 - 1;
       if (measure) excess[i] = C > 0 ? C : 0;
       if (one_sided_ && C < 0) C = 0;
-      lambda[i] = -real(omega_) * C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_sq + relax);
+      lambda[i] = -real(omega_) * C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + squares + relax);
       if (pressure) {
         // Next to a wall the particle's multiplier does the wall's share too (see the top).
         if (iteration > 0) add_contact_pressure(i, x[i], y[i], z[i], pressure[i], to_pressure);
-        const real share = std::min(real(1), (rho - fluid_rho) * inv_first_wall);
+        const real share = std::min(real(1), (rho - fluid) * inv_first_wall);
         pressure[i] = (iteration == 0 ? 0 : pressure[i]) + to_pressure * lambda[i] / (1 + share);
         wall_share_[i] = share;
       }
     }
 
-    if (measure) measure_error(sim);
+    if (measure) measure_error(sim, excess);
 
-    real *dpx = dp_[0].data(), *dpy = dp_[1].data(), *dpz = dp_[2].data();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      real d[3] = {0, 0, 0};
-      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-        real s = 0;
-        if (scorr_scale > 0) {
-          const real ratio = K.W(r2) * inv_wdq;
-          real p = ratio;
-          for (int e = 1; e < n_; ++e) p *= ratio;
-          s = -scorr_scale * p;
-        }
-        const real g = m[j] * inv_rho0 * (lambda[i] + lambda[j] + s) * K.grad_factor(r2);
-        d[0] += g * dx;
-        d[1] += g * dy;
-        d[2] += g * dz;
-      });
+    // The corrections, in the arrays of the gradients (used up).
+    real *dpx = grad_x, *dpy = grad_y, *dpz = grad_z;
+    constraint_corrections(pairs, lambda, inv_rho0, scorr_scale, inv_wdq, n_, dpx, dpy, dpz);
+    if (!walls.empty()) {
       // A wall's gradient moves only particle i (the wall has no lambda of its own); the wall
       // takes the opposite momentum, m dx / dt.
-      for (std::size_t b = 0; b < walls.size(); ++b) {
-        real push[3];
-        for (int c = 0; c < 3; ++c) {
-          const real move = lambda[i] * inv_rho0 * wall_grad_[3 * b + c][i];
-          d[c] += move;
-          push[c] = m[i] * move * inv_dt;
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        real* d[3] = {&dpx[i], &dpy[i], &dpz[i]};
+        for (std::size_t b = 0; b < walls.size(); ++b) {
+          real push[3];
+          for (int c = 0; c < 3; ++c) {
+            const real move = lambda[i] * inv_rho0 * wall_grad_[3 * b + c][i];
+            *d[c] += move;
+            push[c] = m[i] * move * inv_dt;
+          }
+          walls[b]->record_push(i, push);
         }
-        walls[b]->record_push(i, push);
       }
-      dpx[i] = d[0];
-      dpy[i] = d[1];
-      dpz[i] = d[2];
     }
 #pragma omp parallel for simd schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
@@ -275,6 +259,22 @@ class PositionBasedFluid : public Fix {
   // and with it every bit of the run, is the same at any thread count. Reported to the
   // `iterations` compute.
   bool adaptive() const { return target_ > 0 || target_max_ > 0; }
+
+  // Where each wall's density gradient waits from the density pass to the corrections: the
+  // first wall's in scratch arrays 3 to 5 (free by then), unless the pressure needs it after the
+  // iterations (scratch does not outlive a hook); the other walls' in arrays of their own.
+  void wall_gradients(Simulation& sim, std::size_t walls) {
+    wall_grad_.resize(3 * walls);
+    own_wall_grad_.resize(3 * walls);
+    for (std::size_t k = 0; k < 3 * walls; ++k) {
+      if (k < 3 && !keep_pressure_) {
+        wall_grad_[k] = sim.scratch(3 + k);
+      } else {
+        own_wall_grad_[k].resize(sim.particles().size());
+        wall_grad_[k] = own_wall_grad_[k].data();
+      }
+    }
+  }
 
   // The load a wall's projection carried since the last correction, as the multiplier its
   // density term would have needed (see the top), from the walls' gradient of that iteration.
@@ -319,9 +319,8 @@ class PositionBasedFluid : public Fix {
         P.ids()[far], d, d / h, kMostMove, speed, dt, kStableMove, speed, kStableMove * h / speed));
   }
 
-  void measure_error(Simulation& sim) {
-    const std::size_t n = excess_.size();
-    const real* excess = excess_.data();
+  void measure_error(Simulation& sim, const real* excess) {
+    const std::size_t n = sim.particles().size();
     const double mean = n ? deterministic_sum(n, [&](std::size_t i) { return double(excess[i]); }) / double(n) : 0;
     real most = 0;
 #pragma omp parallel for simd reduction(max : most) schedule(static)
@@ -334,7 +333,6 @@ class PositionBasedFluid : public Fix {
   double target_, target_max_;
   int min_iterations_, max_iterations_;
   bool reached_ = false;
-  std::vector<real> excess_;  // max(rho/rho0 - 1, 0) of each particle, within an iteration
   double epsilon_, k_;
   int n_;
   double dq_;
@@ -343,12 +341,13 @@ class PositionBasedFluid : public Fix {
   bool pressure_wanted_, keep_pressure_ = false;
   double S0_ = 1, kappa_ = 1, first_wall_ = 1;
   real scorr_w_ = 1;
+  real uniform_mass_ = 0;  // every particle's mass, when all are equal (the pair sums need not gather it)
   FieldId lambda_ = 0, pressure_ = 0;
   std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
-  std::vector<real> dp_[3];    // corrections of one iteration
   std::vector<real> corrected_[3], wall_share_;  // with the pressure: positions after the last correction, wall share
   real rest_density_ = 1000;
-  std::vector<std::vector<real>> wall_grad_;  // each wall's density gradient (3 arrays per wall), within an iteration
+  std::vector<real*> wall_grad_;  // each wall's density gradient (3 arrays per wall), within an iteration
+  std::vector<std::vector<real>> own_wall_grad_;  // those not in scratch arrays
 };
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "engine/core/error.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/sph/pair_sums.hpp"
 #include "engine/sph/velocity_curl.hpp"
 
 namespace pbf {
@@ -29,55 +30,37 @@ class VorticityConfinement : public Fix {
   }
 
   void velocity_post(Simulation& sim) override {
-    const std::vector<real>& rho = sim.summed_density();
+    const std::vector<real>& volume = sim.summed_volume();
     auto& P = sim.particles();
-    const auto& grid = sim.neighbors();
     const Kernels& K = sim.kernels();
     const std::size_t n = P.size();
-    const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass();
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *wx = P.data(omega_, 0), *wy = P.data(omega_, 1), *wz = P.data(omega_, 2);
-    magnitude_.resize(n);
-    velocity_curl(sim, rho, wx, wy, wz, magnitude_.data());
+    real* magnitude = sim.scratch(3);
+    velocity_curl(sim, volume, wx, wy, wz, magnitude);
 
-    for (auto& c : dv_) c.resize(n);
+    // eta, the gradient of |omega|; it reads no velocity, so each particle's velocity can
+    // take its acceleration as soon as eta is known.
+    real *ex = sim.scratch(0), *ey = sim.scratch(1), *ez = sim.scratch(2);
+    const PairInput pairs{sim.neighbors(), P.x(), P.y(), P.z(), P.mass(), 0, K, n};
+    gradient_sums(pairs, volume.data(), magnitude, ex, ey, ez);
     const real scale = real(epsilon_ * sim.kernel_radius() * sim.timestep());
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const real wi = magnitude_[i];
-      real eta[3] = {0, 0, 0};
-      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
-        const real g = m[j] / rho[j] * (magnitude_[j] - wi) * K.grad_factor(r2);
-        eta[0] += g * dx;
-        eta[1] += g * dy;
-        eta[2] += g * dz;
-      });
+      const real wi = magnitude[i];
+      const real eta[3] = {ex[i], ey[i], ez[i]};
       const real len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
-      real a[3] = {0, 0, 0};
-      if (len > real(1e-12) * (wi / K.h + real(1e-30))) {  // no direction where |omega| is flat
-        const real s = scale * wi / len;
-        a[0] = s * (eta[1] * wz[i] - eta[2] * wy[i]);
-        a[1] = s * (eta[2] * wx[i] - eta[0] * wz[i]);
-        a[2] = s * (eta[0] * wy[i] - eta[1] * wx[i]);
-      }
-      dv_[0][i] = a[0];
-      dv_[1][i] = a[1];
-      dv_[2][i] = a[2];
-    }
-    real* v[3] = {vx, vy, vz};
-    for (int c = 0; c < 3; ++c) {
-      real* vc = v[c];
-      const real* d = dv_[c].data();
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) vc[i] += d[i];
+      if (!(len > real(1e-12) * (wi / K.h + real(1e-30)))) continue;  // no direction where |omega| is flat
+      const real s = scale * wi / len;
+      vx[i] += s * (eta[1] * wz[i] - eta[2] * wy[i]);
+      vy[i] += s * (eta[2] * wx[i] - eta[0] * wz[i]);
+      vz[i] += s * (eta[0] * wy[i] - eta[1] * wx[i]);
     }
   }
 
  private:
   double epsilon_;
   FieldId omega_ = 0;
-  std::vector<real> magnitude_;  // |omega| of each particle (within a step only)
-  std::vector<real> dv_[3];
 };
 
 }  // namespace

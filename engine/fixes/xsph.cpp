@@ -6,6 +6,7 @@
 #include "engine/core/error.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/sph/pair_sums.hpp"
 
 namespace pbf {
 
@@ -19,41 +20,24 @@ class XsphViscosity : public Fix {
   bool needs_neighbors() const override { return true; }
 
   void velocity_post(Simulation& sim) override {
-    const std::vector<real>& rho = sim.summed_density();
+    const std::vector<real>& volume = sim.summed_volume();
     auto& P = sim.particles();
-    const auto& grid = sim.neighbors();
-    const Kernels& K = sim.kernels();
     const std::size_t n = P.size();
-    const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass();
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    real *dx = sim.scratch(0), *dy = sim.scratch(1), *dz = sim.scratch(2);
+    const PairInput pairs{sim.neighbors(), P.x(), P.y(), P.z(), P.mass(), 0, sim.kernels(), n};
+    smoothing_sums(pairs, volume.data(), vx, vy, vz, dx, dy, dz);
     const real c = real(c_);
-    for (auto& d : dv_) d.resize(n);
-
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      real d[3] = {0, 0, 0};
-      grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) {
-        const real w = m[j] / rho[j] * K.W(r2);
-        d[0] += w * (vx[j] - vx[i]);
-        d[1] += w * (vy[j] - vy[i]);
-        d[2] += w * (vz[j] - vz[i]);
-      });
-      dv_[0][i] = c * d[0];
-      dv_[1][i] = c * d[1];
-      dv_[2][i] = c * d[2];
-    }
-    real* v[3] = {vx, vy, vz};
-    for (int a = 0; a < 3; ++a) {
-      real* va = v[a];
-      const real* d = dv_[a].data();
 #pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) va[i] += d[i];
+    for (std::size_t i = 0; i < n; ++i) {
+      vx[i] += c * dx[i];
+      vy[i] += c * dy[i];
+      vz[i] += c * dz[i];
     }
   }
 
  private:
   double c_;
-  std::vector<real> dv_[3];
 };
 
 }  // namespace

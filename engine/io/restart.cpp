@@ -8,6 +8,8 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <type_traits>
 #include <omp.h>
 #include <set>
 #include <unistd.h>
@@ -30,7 +32,17 @@ std::uint32_t checksum(const unsigned char* data, std::size_t size) {
   return static_cast<std::uint32_t>(crc32_z(crc32_z(0L, Z_NULL, 0), data, size));
 }
 
-std::vector<unsigned char> payload(const Simulation& sim) {
+// The particle fields in `real_bytes` per value: this build's precision, or the other one.
+template <class Value>
+void put_values(ByteWriter& w, const real* values, std::uint64_t n) {
+  if constexpr (std::is_same_v<Value, real>) {
+    w.put_array(values, n);
+  } else {
+    for (std::uint64_t i = 0; i < n; ++i) w.put(static_cast<Value>(values[i]));
+  }
+}
+
+std::vector<unsigned char> payload(const Simulation& sim, std::uint32_t real_bytes) {
   ByteWriter w;
   const Domain& d = sim.domain();
   w.put_array(d.lo, 3);
@@ -54,7 +66,12 @@ std::vector<unsigned char> payload(const Simulation& sim) {
   for (FieldId f : saved) {
     w.put_string(P.spec(f).name);
     w.put(static_cast<std::uint32_t>(P.spec(f).components));
-    for (int c = 0; c < P.spec(f).components; ++c) w.put_array(P.data(f, c), n);
+    for (int c = 0; c < P.spec(f).components; ++c) {
+      if (real_bytes == 4)
+        put_values<float>(w, P.data(f, c), n);
+      else
+        put_values<double>(w, P.data(f, c), n);
+    }
   }
 
   w.put(static_cast<std::uint32_t>(sim.fixes().size()));
@@ -124,13 +141,31 @@ void check_clock(const Clock& clock, double dt, const std::string& what) {
   if (!std::isfinite(time)) damaged(fmt::format("the time, {}, is not finite", time));
 }
 
+// Reads n values stored with `Stored` precision into this build's reals. From double into
+// float a finite value beyond float's range is refused, naming the field and the particle.
+template <class Stored>
+void get_values(ByteReader& r, real* out, std::uint64_t n, const std::string& field, const std::int64_t* ids) {
+  if constexpr (std::is_same_v<Stored, real>) {
+    r.get_into(out, n);
+  } else {
+    std::vector<Stored> stored;
+    r.get_array(stored, n);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      out[i] = static_cast<real>(stored[i]);
+      if (std::isfinite(stored[i]) && !std::isfinite(out[i]))
+        throw Error(fmt::format("{}: field '{}' of particle {} is {}, beyond this build's single precision",
+                                r.what(), field, ids[i], stored[i]));
+    }
+  }
+}
+
 void check_header(ByteReader& header, std::size_t file_size, const std::string& what, std::uint32_t& crc,
-                  std::uint64_t& size) {
+                  std::uint64_t& size, std::uint32_t& real_bytes) {
   unsigned char magic[8];
   header.get_into(magic, 8);
   if (std::memcmp(magic, kMagic, 8) != 0) throw Error(what + ": not a pbfengine restart file");
-  const auto version = header.get<std::uint32_t>(), order = header.get<std::uint32_t>(),
-             real_bytes = header.get<std::uint32_t>();
+  const auto version = header.get<std::uint32_t>(), order = header.get<std::uint32_t>();
+  real_bytes = header.get<std::uint32_t>();
   crc = header.get<std::uint32_t>();
   size = header.get<std::uint64_t>();
   if (order == kSwappedByteOrderMark)
@@ -139,12 +174,10 @@ void check_header(ByteReader& header, std::size_t file_size, const std::string& 
   if (version != kRestartVersion)
     throw Error(fmt::format("{}: restart format version {}; this pbfengine reads version {}", what, version,
                             kRestartVersion));
-  if (real_bytes != sizeof(real)) {
-    auto name = [](std::uint32_t bytes) { return bytes == 4 ? "single (float)" : bytes == 8 ? "double" : "unknown"; };
-    throw Error(fmt::format("{}: written by a {}-precision build, this build is {} precision "
-                            "(configure with -DPBF_REAL={} to read it)",
-                            what, name(real_bytes), name(sizeof(real)), real_bytes == 4 ? "float" : "double"));
-  }
+  if (real_bytes != 4 && real_bytes != 8)
+    throw Error(fmt::format("{}: the header is damaged (a real of {} bytes is no precision pbfengine writes: 4 or 8 "
+                            "expected)",
+                            what, real_bytes));
   if (size != file_size - kHeaderBytes)
     throw Error(fmt::format("{}: the header announces {} bytes of data but the file holds {} (truncated or damaged)",
                             what, size, file_size - kHeaderBytes));
@@ -152,14 +185,16 @@ void check_header(ByteReader& header, std::size_t file_size, const std::string& 
 
 }  // namespace
 
-RestartSummary write_restart(Simulation& sim, const std::string& path) {
+RestartSummary write_restart(Simulation& sim, const std::string& path, std::uint32_t real_bytes) {
+  if (real_bytes != 4 && real_bytes != 8)
+    throw Error(fmt::format("write_restart: a real has 4 or 8 bytes, not {}", real_bytes));
   const double start = omp_get_wtime();
-  const std::vector<unsigned char> data = payload(sim);
+  const std::vector<unsigned char> data = payload(sim, real_bytes);
   ByteWriter header;
   header.put_array(kMagic, 8);
   header.put(kRestartVersion);
   header.put(kByteOrderMark);
-  header.put(static_cast<std::uint32_t>(sizeof(real)));
+  header.put(real_bytes);
   header.put(checksum(data.data(), data.size()));
   header.put<std::uint64_t>(data.size());
 
@@ -192,7 +227,8 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   ByteReader header(bytes.data(), kHeaderBytes, what);
   std::uint32_t crc = 0;
   std::uint64_t size = 0;
-  check_header(header, bytes.size(), what, crc, size);
+  std::uint32_t real_bytes = 0;
+  check_header(header, bytes.size(), what, crc, size, real_bytes);
   const unsigned char* data = bytes.data() + kHeaderBytes;
   if (checksum(data, size) != crc) throw Error(what + ": the data are corrupted (checksum mismatch)");
 
@@ -243,14 +279,19 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
     if (std::find(names.begin(), names.end(), spec.name) != names.end())
       throw Error(fmt::format("{}: field '{}' is saved twice", what, spec.name));
     spec.components = static_cast<int>(components);
-    r.require(n * components, sizeof(real));
+    r.require(n * components, real_bytes);
     FieldId f;
     try {
       f = particles.declare(spec);
     } catch (const Error& e) {
       throw Error(fmt::format("{}: {}", what, e.what()));
     }
-    for (int c = 0; c < spec.components; ++c) r.get_into(particles.data(f, c), n);
+    for (int c = 0; c < spec.components; ++c) {
+      if (real_bytes == 4)
+        get_values<float>(r, particles.data(f, c), n, spec.name, particles.ids());
+      else
+        get_values<double>(r, particles.data(f, c), n, spec.name, particles.ids());
+    }
     names.push_back(spec.name);
   }
   for (const char* core : {"position", "velocity", "mass"})
@@ -304,6 +345,10 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   sim.particles() = std::move(particles);
   sim.positions_changed();
   sim.set_last_restart({path, clock.step});
+  if (real_bytes != sizeof(real))
+    spdlog::warn("{}: written in {} precision, read into this {}-precision build: the values are converted, and the "
+                 "run continues close to, not bit for bit like, the saved run",
+                 what, real_bytes == 4 ? "single" : "double", sizeof(real) == 4 ? "single" : "double");
   return {clock.step, sim.time(), sim.particles().size(), bytes.size(), omp_get_wtime() - start};
 }
 

@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <string>
 
+#include "engine/core/real.hpp"
+
 namespace pbf {
 
 class Simulation;
@@ -31,11 +33,14 @@ struct RestartSummary {
 
 // Writes through PATH.tmp, flushed to disk, then an atomic rename: a crash or a full disk
 // never leaves a damaged file under PATH. Records PATH as the simulation's last restart.
-RestartSummary write_restart(Simulation& sim, const std::string& path);
+// The fields are written in this build's precision, or in `real_bytes` (4 or 8) when given.
+RestartSummary write_restart(Simulation& sim, const std::string& path, std::uint32_t real_bytes = sizeof(real));
 
 // Restores the domain, kernel radius, time step, rest density, clock, particles and saved
 // fields, and keeps the fixes' states for the fixes the script declares next. A damaged,
-// truncated, foreign or other-precision file is an error and leaves `sim` as it was.
+// truncated or foreign file is an error and leaves `sim` as it was. A file of the other
+// precision is converted, with a warning (the continuation is then not bit for bit); a value
+// beyond single precision is an error.
 RestartSummary read_restart(Simulation& sim, const std::string& path);
 
 }  // namespace pbf

@@ -92,10 +92,10 @@ void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) 
     columns = {scratch_.data()};
   } else if (name == "vorticity_magnitude") {
     sim.refresh_neighbors();
-    const std::vector<real>& rho = sim.summed_density();
+    const std::vector<real>& volume = sim.summed_volume();
     std::vector<real> w(3 * n);
     scratch_.resize(n);
-    velocity_curl(sim, rho, w.data(), w.data() + n, w.data() + 2 * n, scratch_.data());
+    velocity_curl(sim, volume, w.data(), w.data() + n, w.data() + 2 * n, scratch_.data());
     columns = {scratch_.data()};
   } else if (name == "id") {
     throw Error("internal: the id field is gathered with gather_ids");

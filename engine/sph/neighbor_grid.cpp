@@ -4,6 +4,11 @@
 #include <cmath>
 #include <omp.h>
 
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+#include "engine/sph/neighbor_search_simd.hpp"
+
 namespace pbf {
 
 namespace {
@@ -18,6 +23,9 @@ long clamp_cell(double coordinate, double lo, double cell_size, long dim) {
 }
 
 }  // namespace
+
+// The offsets are 32-bit (4 bytes a particle instead of 8): lists of more pairs are refused.
+constexpr std::uint64_t kMostPairs = 0xFFFFFFFFu - NeighborGrid::kListPadding;
 
 std::size_t NeighborGrid::max_cells(std::size_t n) { return std::max<std::size_t>(4 * n, 1u << 15); }
 
@@ -44,7 +52,8 @@ void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t 
   const std::size_t ncells = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
 
   cell_.resize(n);
-  sorted_.resize(n);
+  sorted_.resize(n + kListPadding);  // the padding (zeros) lets a vector load run past the last slot
+  std::fill(sorted_.begin() + static_cast<std::ptrdiff_t>(n), sorted_.end(), 0u);
   cell_start_.assign(ncells + 1, 0);
   const int T = omp_get_max_threads();
   histogram_.resize(T);
@@ -75,50 +84,60 @@ void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t 
       }
       cell_start_[ncells] = running;
     }
-    for (std::size_t i = begin; i < end; ++i) sorted_[hist[cell_[i]]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = begin; i < end; ++i) {
+      sorted_[hist[cell_[i]]++] = static_cast<std::uint32_t>(i);
+    }
   }
+}
+
+void NeighborGrid::order_cells_by(const std::int64_t* key) {
+  const std::size_t ncells = cell_count();
+  // Cells hold a few particles, mostly in order already: insertion sort.
+#pragma omp parallel for schedule(static)
+  for (std::size_t c = 0; c < ncells; ++c)
+    for (std::uint32_t s = cell_start_[c] + 1; s < cell_start_[c + 1]; ++s) {
+      const std::uint32_t moving = sorted_[s];
+      std::uint32_t t = s;
+      for (; t > cell_start_[c] && key[sorted_[t - 1]] > key[moving]; --t) sorted_[t] = sorted_[t - 1];
+      sorted_[t] = moving;
+    }
 }
 
 void NeighborGrid::build_lists(const real* x, const real* y, const real* z, double h) {
   const std::size_t n = cell_.size();
-  const real h2 = real(h * h);
-  offset_.assign(n + 1, 0);
-  const int T = omp_get_max_threads();
-  thread_lists_.resize(T);
-
-#pragma omp parallel num_threads(T)
-  {
-    const int t = omp_get_thread_num();
-    const std::size_t begin = block_begin(n, t, T), end = block_begin(n, t + 1, T);
-    auto& mine = thread_lists_[t].pairs;
-    mine.clear();
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::size_t before = mine.size();
-      const long c = cell_[i];
-      const long cx = c % dims_[0], cy = (c / dims_[0]) % dims_[1], cz = c / (dims_[0] * dims_[1]);
-      // Cells are numbered x fastest, so the three cells along x of each (y, z) row are one
-      // contiguous run of the sorted order: 9 runs instead of 27 cells.
-      const long x0 = std::max(0L, cx - 1), x1 = std::min(dims_[0] - 1, cx + 1);
-      for (long nz = std::max(0L, cz - 1); nz <= std::min(dims_[2] - 1, cz + 1); ++nz)
-        for (long ny = std::max(0L, cy - 1); ny <= std::min(dims_[1] - 1, cy + 1); ++ny) {
-          const std::size_t row = static_cast<std::size_t>((nz * dims_[1] + ny) * dims_[0]);
-          const std::uint32_t first = cell_start_[row + x0], last = cell_start_[row + x1 + 1];
-          for (std::uint32_t s = first; s < last; ++s) {
-            const std::uint32_t j = sorted_[s];
-            const real dx = x[i] - x[j], dy = y[i] - y[j], dz = z[i] - z[j];
-            if (j != i && dx * dx + dy * dy + dz * dz < h2) mine.push_back(j);
-          }
-        }
-      offset_[i + 1] = mine.size() - before;
-    }
-#pragma omp barrier
-#pragma omp single
-    {
-      for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
-      list_.resize(offset_[n]);
-    }
-    std::copy(mine.begin(), mine.end(), list_.begin() + static_cast<std::ptrdiff_t>(offset_[begin]));
+  const real* position[3] = {x, y, z};
+  for (int a = 0; a < 3; ++a) {
+    packed_[a].resize(n + kListPadding);
+    real* packed = packed_[a].data();
+    const real* p = position[a];
+#pragma omp parallel for schedule(static)
+    for (std::size_t s = 0; s < n; ++s) packed[s] = p[sorted_[s]];
   }
+  const CellSearch search{x, y, z, packed_[0].data(), packed_[1].data(), packed_[2].data(), sorted_.data(),
+                          cell_.data(), cell_start_.data(), {dims_[0], dims_[1], dims_[2]},
+                          real(h * h), n};
+  offset_.resize(n + 1);
+  offset_[0] = 0;
+  count_neighbors(search, offset_.data() + 1);
+  std::uint64_t pairs = 0;  // the running sum, checked against the offsets' range
+  for (std::size_t i = 0; i < n; ++i) {
+    pairs += offset_[i + 1];
+    if (pairs > kMostPairs)
+      throw Error(fmt::format("{} particles have more than {} neighbours in all ({:.3g} per particle): the fluid has "
+                              "collapsed (a time step too large?), or the scene is beyond what the lists can hold",
+                              n, kMostPairs, double(pairs) / double(i + 1)));
+    offset_[i + 1] = static_cast<std::uint32_t>(pairs);
+  }
+  const std::size_t total = offset_[n] + kListPadding;
+  if (list_.capacity() < total) {
+    // Room to grow for a while. The old lists are rebuilt anyway: freed before the larger
+    // array is taken, so that the two never take memory at once.
+    std::vector<std::uint32_t>().swap(list_);
+    list_.reserve(total + total / 4);
+  }
+  list_.resize(total);
+  std::fill(list_.begin() + static_cast<std::ptrdiff_t>(offset_[n]), list_.end(), 0u);
+  fill_neighbors(search, offset_.data(), list_.data());
 }
 
 double NeighborGrid::mean_neighbors() const {

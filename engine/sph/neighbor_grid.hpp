@@ -1,15 +1,21 @@
 #pragma once
 // Uniform grid with cells at least h wide, built by a parallel counting sort
 // (per-thread histograms, a prefix sum, a stable scatter: no locks, no atomics), and
-// compressed neighbour lists built from it once per step.
+// compressed neighbour lists built from it once per step in two passes straight into
+// the final array: count each particle's neighbours, a prefix sum, then fill. Both passes
+// test candidates with vectors, over positions packed in cell order
+// (engine/sph/neighbor_search_simd.hpp).
 //
 // Positions outside the domain fall into the edge cells (clamping keeps any two points
 // closer than h in the same or adjacent cells), and the cell count is capped, so memory
 // follows the particle count, not the box volume over h^3. Neighbour order is fixed
 // (the 3 x 3 x 3 cells in a fixed order, ascending index within a cell): the lists, and everything
-// summed over them, are the same at any thread count.
+// summed over them, are the same at any thread count. The run loop keeps memory in cell order
+// with ids ascending within a cell (order_cells_by), so a list's order depends on the
+// particles' positions and ids only, never on how memory was ordered before.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "engine/core/domain.hpp"
@@ -21,10 +27,16 @@ class NeighborGrid {
  public:
   // Bins particles into cells; afterwards sorted_order() lists particles cell by cell.
   void bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h);
+  // Orders the particles of each cell by `key` (ascending, keys distinct) in sorted_order().
+  void order_cells_by(const std::int64_t* key);
   // Builds every particle's list of neighbours j != i with |x_i - x_j|^2 < h^2.
   void build_lists(const real* x, const real* y, const real* z, double h);
 
-  const std::vector<std::uint32_t>& sorted_order() const { return sorted_; }
+  // The lists are followed by this many valid indices (0), so that a vector loop may load a
+  // whole vector of indices past the end of a list and mask the extra lanes.
+  static constexpr std::size_t kListPadding = 64;
+
+  std::span<const std::uint32_t> sorted_order() const { return {sorted_.data(), cell_.size()}; }
   const std::uint32_t* neighbors(std::size_t i) const { return list_.data() + offset_[i]; }
   std::uint32_t count(std::size_t i) const { return static_cast<std::uint32_t>(offset_[i + 1] - offset_[i]); }
   std::size_t particle_count() const { return offset_.empty() ? 0 : offset_.size() - 1; }
@@ -58,16 +70,11 @@ class NeighborGrid {
   long dims_[3] = {1, 1, 1};
   std::vector<std::uint32_t> cell_;         // cell of each particle
   std::vector<std::uint32_t> cell_start_;   // first sorted slot of each cell (ncells + 1)
-  std::vector<std::uint32_t> sorted_;       // particle indices, cell by cell
+  std::vector<std::uint32_t> sorted_;       // particle indices, cell by cell, and kListPadding zeros
+  std::vector<real> packed_[3];             // positions in sorted_ order, padded
   std::vector<std::vector<std::uint32_t>> histogram_;  // per thread, per cell
-  std::vector<std::size_t> offset_;         // list of particle i: list_[offset_[i] .. offset_[i+1])
-  std::vector<std::uint32_t> list_;
-  // Each thread's lists while they are built, one cache line apart: push_back writes the
-  // vector's end pointer, and two threads writing one line would slow each other down.
-  struct alignas(64) ThreadList {
-    std::vector<std::uint32_t> pairs;
-  };
-  std::vector<ThreadList> thread_lists_;
+  std::vector<std::uint32_t> offset_;       // list of particle i: list_[offset_[i] .. offset_[i+1])
+  std::vector<std::uint32_t> list_;         // and kListPadding zeros after the last
 };
 
 }  // namespace pbf
