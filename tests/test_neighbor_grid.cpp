@@ -112,6 +112,38 @@ TEST(NeighborGrid, SameListsInTheSameOrderAtAnyThreadCount) {
   EXPECT_EQ(lists[0], lists[1]);
 }
 
+// Ordered by id within each cell, a particle's list (as ids) is the same whatever order the
+// particles sit in memory: it depends on positions and ids only (issue 11).
+TEST(NeighborGrid, ListsInIdsDoNotDependOnMemoryOrder) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  Cloud by_id;
+  for (int i = 0; i < 4000; ++i) by_id.add(u(rng), u(rng), u(rng));
+  std::vector<std::uint32_t> order(by_id.x.size());  // memory slot k holds particle id order[k]
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<std::uint32_t>(k);
+  std::vector<std::vector<std::int64_t>> lists[2];  // per id, its neighbours' ids in list order
+  for (int pass : {0, 1}) {
+    if (pass == 1) std::shuffle(order.begin(), order.end(), rng);
+    Cloud p;
+    std::vector<std::int64_t> ids;
+    for (std::uint32_t id : order) {
+      p.add(by_id.x[id], by_id.y[id], by_id.z[id]);
+      ids.push_back(id);
+    }
+    NeighborGrid grid;
+    grid.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), unit_box(), 0.07);
+    grid.order_cells_by(ids.data());
+    grid.build_lists(p.x.data(), p.y.data(), p.z.data(), 0.07);
+    lists[pass].resize(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      for (std::uint32_t k = 0; k < grid.count(i); ++k) lists[pass][order[i]].push_back(ids[grid.neighbors(i)[k]]);
+  }
+  EXPECT_EQ(lists[0], lists[1]);
+  std::size_t pairs = 0;
+  for (const auto& l : lists[0]) pairs += l.size();
+  EXPECT_GT(pairs, 4000u);
+}
+
 TEST(NeighborGrid, CellCountIsCappedInAHugeBox) {
   Domain d;
   for (int a = 0; a < 3; ++a) d.lo[a] = 0, d.hi[a] = 1000;  // (1000 / 0.01)^3 = 1e15 cells uncapped

@@ -208,6 +208,7 @@ void Simulation::refresh_neighbors() {
   if (h_ <= 0) throw Error("the kernel radius h is not set");
   const auto& P = particles_;
   grid_.bin(P.x(), P.y(), P.z(), P.size(), domain_, h_);
+  grid_.order_cells_by(P.ids());
   grid_.build_lists(P.x(), P.y(), P.z(), h_);
   grid_version_ = positions_version_;
 }
@@ -228,7 +229,7 @@ const std::vector<real>& Simulation::summed_density() {
   for (DensityBoundary* b : boundaries_) b->prepare(*this);
   density_sums(PairInput{grid_, x, y, z, m, uniform_mass(m, n), K, n}, density_.data());
   if (!boundaries_.empty()) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static, 256)
     for (std::size_t i = 0; i < n; ++i) {
       real grad[3] = {0, 0, 0};
       for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], density_[i], grad);

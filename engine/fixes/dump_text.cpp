@@ -17,7 +17,7 @@ namespace pbf {
 namespace {
 
 const Names kOriginalFields = {"position", "velocity"};
-constexpr std::size_t kBlockLines = 65536;
+constexpr std::size_t kBlockLines = 16384;
 
 class DumpText : public Dump {
  public:
@@ -27,7 +27,6 @@ class DumpText : public Dump {
   void write_frame(Simulation& sim, const std::string& path, std::int64_t) override {
     const std::size_t n = sim.particles().size();
     std::vector<std::vector<real>> values(fields().size());
-    std::vector<std::int64_t> ids;
     fmt::memory_buffer buf;
     if (fields().names() != kOriginalFields) {
       fmt::format_to(std::back_inserter(buf), "#");
@@ -40,9 +39,19 @@ class DumpText : public Dump {
       }
       fmt::format_to(std::back_inserter(buf), "\n");
     }
+    // A particle field is read where it lies, through the index of each id; only derived
+    // quantities (speed, density, ...) are gathered, so that a frame of position and velocity
+    // costs no copy of the particles (memory is the limit at a million of them).
+    const auto& P = sim.particles();
+    const std::vector<std::uint32_t> index = P.index_of_id();
+    std::vector<std::vector<const real*>> columns(fields().size());
     for (std::size_t k = 0; k < fields().size(); ++k) {
-      if (fields().is_id(k)) fields().gather_ids(sim, ids);
-      else fields().gather(sim, k, values[k]);
+      if (fields().is_id(k)) continue;  // the id of line i is i
+      if (const auto f = P.find(fields().names()[k])) {
+        for (int c = 0; c < fields().components(k); ++c) columns[k].push_back(P.data(*f, c));
+      } else {
+        fields().gather(sim, k, values[k]);
+      }
     }
     fmt::format_to(std::back_inserter(buf), "{}\n", n);
     AtomicFile file(path);  // a full disk leaves no cut-off frame behind
@@ -64,7 +73,8 @@ class DumpText : public Dump {
           for (std::size_t k = 0; k < fields().size(); ++k) {
             const int nc = fields().components(k);
             for (int c = 0; c < nc; ++c) {
-              if (fields().is_id(k)) fmt::format_to(out, "{}{}", separator, ids[i]);
+              if (fields().is_id(k)) fmt::format_to(out, "{}{}", separator, i);
+              else if (!columns[k].empty()) fmt::format_to(out, "{}{}", separator, columns[k][c][index[i]]);
               else fmt::format_to(out, "{}{}", separator, values[k][i * nc + c]);
               separator = " ";
             }

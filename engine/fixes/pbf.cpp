@@ -169,7 +169,7 @@ class PositionBasedFluid : public Fix {
     wall_gradients(sim, walls.size());
     const PairInput pairs{grid, x, y, z, m, uniform_mass_, K, n};
     constraint_sums(pairs, inv_rho0, fluid_rho, grad_x, grad_y, grad_z, grad_sq);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static, 256)
     for (std::size_t i = 0; i < n; ++i) {
       const real fluid = fluid_rho[i], squares = grad_sq[i];
       real rho = fluid;
@@ -204,7 +204,7 @@ class PositionBasedFluid : public Fix {
     if (!walls.empty()) {
       // A wall's gradient moves only particle i (the wall has no lambda of its own); the wall
       // takes the opposite momentum, m dx / dt.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static, 256)
       for (std::size_t i = 0; i < n; ++i) {
         real* d[3] = {&dpx[i], &dpy[i], &dpz[i]};
         for (std::size_t b = 0; b < walls.size(); ++b) {

@@ -10,9 +10,10 @@
 // closer than h in the same or adjacent cells), and the cell count is capped, so memory
 // follows the particle count, not the box volume over h^3. Neighbour order is fixed
 // (the 3 x 3 x 3 cells in a fixed order, ascending index within a cell): the lists, and everything
-// summed over them, are the same at any thread count. The run loop keeps memory in cell order
-// with ids ascending within a cell (order_cells_by), so a list's order depends on the
-// particles' positions and ids only, never on how memory was ordered before.
+// summed over them, are the same at any thread count. The engine orders each cell's particles
+// by id (order_cells_by) before it builds lists, so a list's order depends on the particles'
+// positions and ids only, never on memory order or on when the list was built; and it keeps
+// memory in the same order (reordering every 20 steps), so that neighbours sit near in memory.
 #include <cstddef>
 #include <cstdint>
 #include <span>

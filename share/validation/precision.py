@@ -290,7 +290,7 @@ def write_report(args, binaries, precision, commands, md, verdict, wall):
              ""]
     for name, path in binaries.items():
         lines.append(f"- {name}: `{path}` (PBF_REAL = {precision[name]}, from the CMakeCache.txt beside it)")
-    lines += ["", "The runs, in order (the CSV files lie in a temporary directory):", "", "```"]
+    lines += ["", "The runs, in order (the CSV files lie in a temporary directory):", "", "```sh"]
     lines += [shlex.join(c) for c in commands]
     lines += ["```", "",
               f"Z: the 99.5th percentile of x plus half a spacing, over a, at T = t sqrt(2 g / a); criterion "
