@@ -15,7 +15,8 @@
 -- Variables: period (s, default 1.0), stroke (m, default 0.04), depth (m, default 0.3),
 -- spacing (m, default 0.02), width (m, default 4 spacings: a 2D-like flume), start (s, when
 -- the paddle starts, default 1), t_end (s, default 9), dt (s, default 0.025 h over the
--- shallow-water wave speed), iterations and xsph (pbf's, default 4 and on), out (directory,
+-- shallow-water wave speed), iterations, error, max_iterations, one_sided and xsph (pbf's, default
+-- 4 iterations, one-sided, XSPH on), out (directory,
 -- default "out"; the gauges go to out/gauges.csv), solver ("pbf", the default, or "wcsph");
 -- images, movie and vtk as in every scenario.
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
@@ -46,7 +47,8 @@ pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if (var.solver or "pbf") == "wcsph" then
   require("solvers").wcsph{}
 else
-  pbf.fix("pbf", "pbf", {iterations = var.iterations or 4})
+  pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, error = var.error, max_iterations = var.max_iterations,
+                         one_sided = not (var.one_sided == 0 or var.one_sided == "false")})
   if (var.xsph or 1) ~= 0 then pbf.fix("xsph", "xsph", {}) end
 end
 pbf.fix("walls", "box", {})

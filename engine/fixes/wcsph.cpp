@@ -2,7 +2,14 @@
 // in the forces stage after the neighbour search:
 //   density     summation: rho_i = sum_j m_j W(x_ij) + walls (the density every style
 //               and compute of the engine uses, and the one the mass rule sets to rho0), or
-//               continuity: rho_i += dt sum_j m_j (v_i - v_j) . gradW_ij
+//               continuity: rho_i += dt sum_j m_j (v_i - v_j) . gradW_ij  [+ dt D_i]
+//   diffusion   (continuity only; delta-SPH, Molteni & Colagrossi 2009, with the hydrostatic
+//               part left out as Fourtakas et al. 2019 do, so that a column at rest keeps its
+//               density profile):
+//               D_i = 2 delta h_s c0 sum_j V_j ((rho_j - rho_i) - rho0 g (z_i - z_j) / c0^2) (-F_ij)
+//               with gradW_ij = F_ij x_ij, V_j = m_j / rho_j and h_s = h / 2 the smoothing
+//               length (h the kernel's radius). It damps the density noise, and the acoustic
+//               ringing after an impact, that the continuity equation otherwise keeps.
 //   pressure    tait:   p = B ((rho/rho0)^gamma - 1),  B = rho0 c0^2 / gamma
 //               linear: p = c0^2 (rho - rho0)
 //               negative pressures (a stretched free surface) clamped to 0 unless kept
@@ -46,8 +53,12 @@ class Wcsph : public Fix {
         gamma_(p.real("gamma")),
         c0_(p.real("sound_speed")),
         gravity_(p.real("gravity")),
+        diffusion_(p.real("diffusion")),
         keep_negative_(p.boolean("negative_pressure")),
-        max_error_(p.real("max_density_error")) {}
+        max_error_(p.real("max_density_error")) {
+    if (diffusion_ > 0 && density_ != "continuity")
+      throw Error("parameter 'diffusion' needs density = \"continuity\": the summed density has no noise to diffuse");
+  }
 
   std::vector<Stage> stages() const override { return {Stage::forces}; }
   Role role() const override { return Role::solver; }
@@ -101,13 +112,17 @@ class Wcsph : public Fix {
       std::copy(summed.begin(), summed.end(), rho);
     } else {
       drho_.resize(n);
+      const real diffusion = real(diffusion_ * sim.kernel_radius() * c0_);  // 2 delta h_s c0, h_s = h / 2
+      const real hydrostatic = real(sim.rest_density() * std::fabs(gravity_) / (c0_ * c0_));
 #pragma omp parallel for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
-        real sum = 0;
+        real sum = 0, diffused = 0;
         grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
           const real g = K.grad_factor(r2);
           sum += m[j] * g * ((vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy + (vz[i] - vz[j]) * dz);
+          diffused -= m[j] / rho[j] * ((rho[j] - rho[i]) - hydrostatic * dz) * g;
         });
+        sum += diffusion * diffused;
         // Walls as mirrored fluid: the mirror image moves with the normal velocity reversed,
         // so approaching a wall raises the density by 2 v . grad(rho_wall).
         real wall_rho = 0, grad[3] = {0, 0, 0};
@@ -196,7 +211,7 @@ class Wcsph : public Fix {
   }
 
   std::string eos_, density_;
-  double gamma_, c0_, gravity_;
+  double gamma_, c0_, gravity_, diffusion_;
   bool keep_negative_;
   double max_error_;
   FieldId rho_ = 0, pressure_ = 0, accel_ = 0;
@@ -214,11 +229,15 @@ void register_wcsph(StyleRegistry& r) {
           ParamSpec{"sound_speed", ParamType::Real, 0.0, "m/s",
                     "c0; 0: 10 sqrt(2 g H), H the fluid's initial height (at most 1e4 m/s, faster than sound in steel)"}
               .within(0, kMostSoundSpeed),
-          ParamSpec{"gravity", ParamType::Real, 9.81, "m/s^2", "g in the default sound speed (its magnitude counts)"}
+          ParamSpec{"gravity", ParamType::Real, 9.81, "m/s^2",
+                    "g in the default sound speed and the diffusion's hydrostatic part (its magnitude counts; along -z)"}
               .magnitude_at_most(kMostAcceleration),
           ParamSpec{"density", ParamType::String, std::string("summation"), "",
                     "summation: the SPH sum, walls included; continuity: integrated from the velocity divergence"}
               .one_of({"summation", "continuity"}),
+          ParamSpec{"diffusion", ParamType::Real, 0.0, "",
+                    "delta-SPH density diffusion delta (continuity only; 0.1 is usual, 0: none)"}
+              .within(0, 1),
           {"negative_pressure", ParamType::Bool, false, "", "keep negative pressures (false: clamp them to 0)"},
           ParamSpec{"max_density_error", ParamType::Real, 0.5, "",
                     "stop the run when rho/rho0 - 1 exceeds this (compression; spray may be less dense)"}

@@ -3,14 +3,16 @@
 --   leapfrog (kick-drift-kick), wcsph (summed density, Tait pressure, pressure force),
 --   sph_viscosity (Monaghan's artificial viscosity), cfl (time-step control)
 -- Gravity and walls are the scenario's, as for PBF. Options, each nil for the style's
--- default: alpha, eos, density, sound_speed, courant, align (s: steps end on multiples of
--- it), fixed_dt (true: no cfl; the script's time step is used as it is).
+-- default: alpha, eos, density, diffusion (delta-SPH, with density = "continuity"), sound_speed,
+-- courant, align (s: steps end on multiples of it), fixed_dt (true: no cfl; the script's time
+-- step is used as it is).
 local solvers = {}
 
 function solvers.wcsph(opts)
   opts = opts or {}
   pbf.fix("integrator", "leapfrog", {})
-  pbf.fix("wcsph", "wcsph", {eos = opts.eos, density = opts.density, sound_speed = opts.sound_speed})
+  pbf.fix("wcsph", "wcsph", {eos = opts.eos, density = opts.density, sound_speed = opts.sound_speed,
+                             diffusion = opts.diffusion})
   pbf.fix("viscosity", "sph_viscosity", {alpha = opts.alpha})
   local fixed = opts.fixed_dt ~= nil and opts.fixed_dt ~= false and opts.fixed_dt ~= 0 and opts.fixed_dt ~= "false"
   if not fixed then pbf.fix("cfl", "cfl", {courant = opts.courant, align = opts.align}) end

@@ -12,8 +12,8 @@
 #                                        [--t-end T] [--var NAME=VALUE]... [--reuse]
 #
 # BINARY defaults to build/pbfengine, OUTDIR to out/spheric (relative paths: from the
-# repository root). The default cases are pbf:0.03 pbf:0.02 wcsph:0.04 wcsph:0.03, run one
-# after another (about 17 minutes on 2 cores, measured 2026-11-23); --quick runs pbf:0.04
+# repository root). The default cases are pbf:0.03 pbf:0.02 pbf:0.015 wcsph:0.04 wcsph:0.03, run
+# one after another (about 12 minutes on 2 cores, measured 2026-11-26); --quick runs pbf:0.04
 # alone (12 s on an idle machine); --cases chooses others; --t-end the simulated time (default 2.02 s);
 # --var passes -v NAME=VALUE to every run (e.g. --var probe_offset=0); --reuse keeps a case
 # whose run.log already reports its Timing line. Threads: OMP_NUM_THREADS as set (every core
@@ -25,7 +25,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 exe=build/pbfengine
 outdir=out/spheric
-cases="pbf:0.03 pbf:0.02 wcsph:0.04 wcsph:0.03"
+cases="pbf:0.03 pbf:0.02 pbf:0.015 wcsph:0.04 wcsph:0.03"
 t_end=2.02
 reuse=0
 positional=0
