@@ -36,7 +36,7 @@ void block(Simulation& sim, const double lo[3], const double hi[3], double vx = 
 double wall_density(Simulation& sim, double x, double y, double z, double grad[3]) {
   for (DensityBoundary* b : sim.density_boundaries()) b->prepare(sim);
   real rho = 0, g[3] = {0, 0, 0};
-  for (const DensityBoundary* b : sim.density_boundaries()) b->add_density(sim, real(x), real(y), real(z), rho, g);
+  for (const DensityBoundary* b : sim.density_boundaries()) b->add_density(sim, real(x), real(y), real(z), DensityBoundary::kNoParticle, rho, g);
   for (int a = 0; a < 3; ++a) grad[a] = g[a];
   return rho;
 }

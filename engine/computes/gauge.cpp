@@ -62,7 +62,7 @@ class Gauge : public Compute {
         });
         if (walls.empty()) return f;
         real wall = 0, grad[3] = {0, 0, 0};
-        for (const DensityBoundary* b : walls) b->add_density(sim, real(x), real(y), real(z), wall, grad);
+        for (const DensityBoundary* b : walls) b->add_density(sim, real(x), real(y), real(z), DensityBoundary::kNoParticle, wall, grad);
         const double room = 1 - wall * inv_rho0;  // the kernel's share on the fluid side
         return room < 0.1 ? 0.0 : f / room;
       };

@@ -232,7 +232,7 @@ const std::vector<real>& Simulation::summed_density() {
 #pragma omp parallel for schedule(static, 256)
     for (std::size_t i = 0; i < n; ++i) {
       real grad[3] = {0, 0, 0};
-      for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], density_[i], grad);
+      for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], i, density_[i], grad);
     }
   }
   density_version_ = positions_version_;

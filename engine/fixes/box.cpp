@@ -101,7 +101,7 @@ class Box : public Fix, public DensityBoundary {
 
   void prepare(const Simulation& sim) override { wall_.prepare(sim); }
 
-  void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const override {
+  void add_density(const Simulation& sim, real x, real y, real z, std::size_t, real& rho, real grad[3]) const override {
     const Domain& d = sim.domain();
     const real h = sim.kernels().h;
     const real p[3] = {x, y, z};

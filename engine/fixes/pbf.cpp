@@ -177,7 +177,7 @@ class PositionBasedFluid : public Fix {
       // Each wall's gradient, kept for the correction pass (the positions do not change in between).
       for (std::size_t b = 0; b < walls.size(); ++b) {
         real wall_grad[3] = {0, 0, 0};
-        walls[b]->add_density(sim, x[i], y[i], z[i], rho, wall_grad);
+        walls[b]->add_density(sim, x[i], y[i], z[i], i, rho, wall_grad);
         for (int c = 0; c < 3; ++c) {
           gi[c] += wall_grad[c] * inv_rho0;
           wall_grad_[3 * b + c][i] = wall_grad[c];

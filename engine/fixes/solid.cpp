@@ -198,9 +198,19 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     if (!fluid_inside_ && !shape_.is_plane()) check_thickness(spacing_);
   }
 
-  void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const override {
+  void add_density(const Simulation& sim, real x, real y, real z, std::size_t particle, real& rho,
+                   real grad[3]) const override {
     real f, g[3];
     const real q[3] = {x, y, z};
+    // Within a step, a particle still beyond the kernel's reach of a solid at rest (its start
+    // distance less what it has moved since, and two cells for the spline's sharpening) sees
+    // no wall: the map would answer f = 0.
+    if (particle != kNoParticle && !motion_ && started_step_ == sim.step() && particle < start_distance_.size()) {
+      const real moved = std::sqrt((x - start_[0][particle]) * (x - start_[0][particle]) +
+                                   (y - start_[1][particle]) * (y - start_[1][particle]) +
+                                   (z - start_[2][particle]) * (z - start_[2][particle]));
+      if (far_from_wall(start_distance_[particle], moved, real(map_.far_distance() + 2 * cell_size()))) return;
+    }
     if (fraction_at(now_, q, f, g) == SolidMap::Where::fluid) return;
     const real rho0 = real(sim.rest_density());
     rho += rho0 * f;
@@ -217,14 +227,16 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     for (auto& s : start_) s.resize(n);
     for (auto& s : push_) s.assign(n, 0);
     start_distance_.resize(n);
+    started_step_ = sim.step();
     const real *x = P.x(), *y = P.y(), *z = P.z();
+    const real far = real(map_.far_distance());  // far in the fluid: at least this far
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const real q[3] = {x[i], y[i], z[i]};
       real b[3], d;
       to_frame(before_, q, b);
       for (int a = 0; a < 3; ++a) start_[a][i] = b[a];
-      start_distance_[i] = map_.distance(b[0], b[1], b[2], d, nullptr) == SolidMap::Where::fluid ? real(1e30) : d;
+      start_distance_[i] = map_.distance(b[0], b[1], b[2], d, nullptr) == SolidMap::Where::fluid ? far : d;
     }
   }
 
@@ -281,6 +293,12 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     for (std::size_t i = 0; i < P.size(); ++i) {
       real d, g[3];
       const real q[3] = {x[i], y[i], z[i]};
+      if (!motion_) {  // at rest, the step's start distance rules out most particles (keep_out)
+        const real moved = std::sqrt((q[0] - start_[0][i]) * (q[0] - start_[0][i]) +
+                                     (q[1] - start_[1][i]) * (q[1] - start_[1][i]) +
+                                     (q[2] - start_[2][i]) * (q[2] - start_[2][i]));
+        if (far_from_wall(start_distance_[i], moved, touching)) continue;
+      }
       if (distance_at(now_, q, d, g) != SolidMap::Where::near || d > touching) continue;
       const real len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
       if (len == 0) continue;
@@ -390,15 +408,24 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     for (int a = 0; a < 3; ++a) g[a] = real(r[a]);
   }
 
+  // Whether a particle that started the step `start_distance` from the wall and has moved
+  // `moved` since is still farther than `reach` from it, without a lookup: a distance changes
+  // no faster than the position (|grad d| = 1), and 1.25 allows for the map's spline. Most of
+  // the fluid is far from the walls, and this spares it the map in every projection.
+  static bool far_from_wall(real start_distance, real moved, real reach) {
+    return real(1.25) * moved < start_distance - reach;
+  }
+
   // Moves p out of the wall along the path the particle took this step from p0, where it
   // started at `start_distance` from the wall (both in the wall's frame). Lost when the
   // particle is deep inside the wall, which projection cannot undo.
   Contact keep_out(const real p0[3], real start_distance, real p[3]) const {
     real d, g[3];
-    const auto where = map_.distance(p[0], p[1], p[2], d, nullptr);
     const real step[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
     const real len = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
     const real hair = real(this->hair()), gap = real(this->gap()), reach = gap - hair / 2;
+    if (far_from_wall(start_distance, len, reach)) return Contact::none;
+    const auto where = map_.distance(p[0], p[1], p[2], d, nullptr);
     const bool inside = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < reach);
     if (!inside && len < start_distance - reach) return Contact::none;  // cannot have reached the wall
     // March from the start: the first point at or behind the surface is where it met the wall.
@@ -414,7 +441,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
         break;
       }
       if (s >= len) break;
-      s = std::min(len, s + std::max(w == SolidMap::Where::fluid ? real(1e30) : dh, min_step));
+      s = std::min(len, s + std::max(w == SolidMap::Where::fluid ? real(map_.far_distance()) : dh, min_step));
     }
     if (!met) return Contact::none;  // passed near the wall without touching it
     // Take away the motion into the wall at the contact point, keep the motion along it.
@@ -468,6 +495,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   double built_for_[7] = {0, 0, 0, 0, 0, 0, 0};
   double spacing_ = 0, contact_spacings_ = 0;
   std::vector<real> start_[3], start_distance_;
+  std::int64_t started_step_ = -1;  // the step start_ and start_distance_ belong to
   std::vector<real> push_[3];  // momentum the wall gave each particle in this step
   std::array<double, 6> load_{};
 };

@@ -126,7 +126,7 @@ class Wcsph : public Fix {
         // Walls as mirrored fluid: the mirror image moves with the normal velocity reversed,
         // so approaching a wall raises the density by 2 v . grad(rho_wall).
         real wall_rho = 0, grad[3] = {0, 0, 0};
-        for (const DensityBoundary* w : walls) w->add_density(sim, x[i], y[i], z[i], wall_rho, grad);
+        for (const DensityBoundary* w : walls) w->add_density(sim, x[i], y[i], z[i], i, wall_rho, grad);
         drho_[i] = sum + 2 * (vx[i] * grad[0] + vy[i] * grad[1] + vz[i] * grad[2]);
       }
       for (std::size_t i = 0; i < n; ++i) rho[i] += dt * drho_[i];
@@ -148,7 +148,7 @@ class Wcsph : public Fix {
       if (pi != 0)  // each wall as fluid mirrored at the same pressure; it takes the opposite push
         for (DensityBoundary* w : walls) {
           real wall_rho = 0, grad[3] = {0, 0, 0}, push[3];
-          w->add_density(sim, x[i], y[i], z[i], wall_rho, grad);
+          w->add_density(sim, x[i], y[i], z[i], i, wall_rho, grad);
           for (int c = 0; c < 3; ++c) {
             a[c] -= 2 * pi * grad[c];
             push[c] = -2 * pi * grad[c] * m[i] * dt;

@@ -126,6 +126,7 @@ void SolidMap::build(const Shape& shape, bool fluid_inside, const Region& region
   for (const Node& n : computed_) deepest_node_ = std::max(deepest_node_, -double(n.d));
   store_padded(shape, sign);
   computed_ = {};
+  mark_far_bricks(h + std::abs(delta));
 }
 
 // The spline's coefficients, and each brick's copy of them with the ring of neighbours its
@@ -181,6 +182,24 @@ void SolidMap::store_padded(const Shape& shape, double sign) {
       global(k, n, P, -1, i);
       nodes_[k * kPadded + n] = value(i);
     }
+}
+
+// A brick is active where its centre is within about h + 3.5 cells of the surface, so that
+// every point within h is in one; most of its points lie farther. Where every coefficient a
+// brick stores has d and d_eff at least `far`, the spline (weights >= 0 that sum to 1) is at
+// least `far` everywhere in the brick: the wall fraction is 0 and the distance beyond every
+// use of it (contact, projection), so the brick answers as far fluid, with one index lookup
+// in place of 27 nodes (2026-11-26: the particles 2 to 6 spacings from a wall).
+void SolidMap::mark_far_bricks(double far) {
+  far_ = far;
+  const float threshold = float(far);
+  for (std::int32_t& b : brick_of_) {
+    if (b < 0) continue;
+    const Node* v = &nodes_[static_cast<std::size_t>(b) * kPadded];
+    bool beyond = true;
+    for (int n = 0; n < kPadded && beyond; ++n) beyond = v[n].d >= threshold && v[n].d_eff >= threshold;
+    if (beyond) b = kFluid;
+  }
 }
 
 double SolidMap::deepest() const {

@@ -64,6 +64,9 @@ class SolidMap {
   // The wall fraction f with its gradient (f = 0 far in the fluid).
   Where fraction(real x, real y, real z, real& f, real grad[3]) const;
 
+  // A distance every point answered as Where::fluid is at least (h + |delta|).
+  double far_distance() const { return far_; }
+
   // How deep the wall's deepest node lies (-d; infinite when some brick is all wall).
   double deepest() const;
 
@@ -91,6 +94,8 @@ class SolidMap {
   double trilinear_distance(const Point& q, bool& near) const;
   // The spline's coefficients from the computed nodes, into each brick with its ring.
   void store_padded(const Shape& shape, double sign);
+  // After building: bricks whose stored coefficients all reach `far` answer as far fluid.
+  void mark_far_bricks(double far);
   // While building: node (ix, iy, iz) of the brick that owns it (nullptr where none does).
   const Node* owned_node(std::int64_t ix, std::int64_t iy, std::int64_t iz) const;
   struct Tap {  // a cell of the stencil: its offset, W and grad_y W averaged over it
@@ -111,6 +116,7 @@ class SolidMap {
   std::vector<std::int64_t> corner_;  // first cell of each active brick, 3 per brick
   std::size_t active_ = 0;
   double deepest_node_ = 0;  // the largest -d over the nodes
+  double far_ = 0;           // see far_distance()
   const HalfSpaceWall* wall_ = nullptr;
 };
 

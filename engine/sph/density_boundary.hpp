@@ -15,8 +15,12 @@ class DensityBoundary {
   // Brings constants that depend on the scene (h, rho0, particle mass) up to date; called
   // before a run and before the engine measures densities.
   virtual void prepare(const Simulation&) {}
-  // Adds the boundary density at (x, y, z) to `rho` and its gradient to `grad`.
-  virtual void add_density(const Simulation& sim, real x, real y, real z, real& rho, real grad[3]) const = 0;
+  // Adds the boundary density at (x, y, z) to `rho` and its gradient to `grad`. `particle`:
+  // the memory index of the particle at (x, y, z) during a step, which lets a boundary use
+  // what it knows of that particle since the step began; kNoParticle for any other point.
+  static constexpr std::size_t kNoParticle = ~std::size_t(0);
+  virtual void add_density(const Simulation& sim, real x, real y, real z, std::size_t particle, real& rho,
+                           real grad[3]) const = 0;
   // The solver's term for this boundary gave particle i (memory index) the momentum
   // `momentum` (kg m/s) in this step: a boundary that reports the load on itself adds it up
   // (Newton's third law). Called from parallel loops, each index by one thread at a time.
