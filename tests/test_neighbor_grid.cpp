@@ -112,6 +112,49 @@ TEST(NeighborGrid, SameListsInTheSameOrderAtAnyThreadCount) {
   EXPECT_EQ(lists[0], lists[1]);
 }
 
+// The lists of a build that follows another: in one pass when the particles moved little
+// (each block's lists fit the room the last build's sizes give it), in two when they crowded
+// together (more neighbours than the room); either way the lists of a grid built afresh, in
+// the same order, at 1 and 2 threads.
+TEST(NeighborGrid, ARebuildGivesTheListsOfAFreshGrid) {
+  for (int t : {1, 2}) {
+    omp_set_num_threads(t);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1), jitter(-0.005, 0.005);
+    Cloud p;
+    for (int i = 0; i < 6000; ++i) p.add(u(rng), u(rng), u(rng));
+    const double h = 0.06;
+    NeighborGrid grid;
+    grid.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), unit_box(), h);
+    grid.build_lists(p.x.data(), p.y.data(), p.z.data(), h);
+    EXPECT_FALSE(grid.built_in_one_pass()) << "the first build has no sizes to go by";
+    for (const char* change : {"moved a little", "crowded together"}) {
+      for (std::size_t i = 0; i < p.x.size(); ++i) {
+        if (change[0] == 'm') {
+          p.x[i] = std::clamp(p.x[i] + real(jitter(rng)), real(0), real(1));
+          p.y[i] = std::clamp(p.y[i] + real(jitter(rng)), real(0), real(1));
+          p.z[i] = std::clamp(p.z[i] + real(jitter(rng)), real(0), real(1));
+        } else {
+          p.x[i] *= real(0.6), p.y[i] *= real(0.6), p.z[i] *= real(0.6);  // 4.6 times the neighbours
+        }
+      }
+      grid.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), unit_box(), h);
+      grid.build_lists(p.x.data(), p.y.data(), p.z.data(), h);
+      EXPECT_EQ(grid.built_in_one_pass(), change[0] == 'm') << change;
+      NeighborGrid fresh;
+      fresh.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), unit_box(), h);
+      fresh.build_lists(p.x.data(), p.y.data(), p.z.data(), h);
+      for (std::size_t i = 0; i < p.x.size(); ++i)
+        ASSERT_EQ(std::vector<std::uint32_t>(grid.neighbors(i), grid.neighbors(i) + grid.count(i)),
+                  std::vector<std::uint32_t>(fresh.neighbors(i), fresh.neighbors(i) + fresh.count(i)))
+            << "particle " << i << ", " << change << ", " << t << " thread(s)";
+      EXPECT_EQ(grid.mean_neighbors(), fresh.mean_neighbors());
+      expect_matches_brute_force(p, unit_box(), h, t);
+    }
+  }
+  omp_set_num_threads(1);
+}
+
 // Ordered by id within each cell, a particle's list (as ids) is the same whatever order the
 // particles sit in memory: it depends on positions and ids only (issue 11).
 TEST(NeighborGrid, ListsInIdsDoNotDependOnMemoryOrder) {

@@ -174,13 +174,15 @@ void SolidMap::store_padded(const Shape& shape, double sign) {
       }
     next.swap(computed_);  // owned_node() reads the coefficients of this sweep
   }
-  nodes_.assign(active_ * kPadded, Node{0, 0});
+  nodes_.assign(active_ * 2 * kPadded, 0.0f);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t k = 0; k < active_; ++k)
     for (int n = 0; n < kPadded; ++n) {
       std::int64_t i[3];
       global(k, n, P, -1, i);
-      nodes_[k * kPadded + n] = value(i);
+      const Node v = value(i);
+      nodes_[k * 2 * kPadded + n] = v.d;
+      nodes_[k * 2 * kPadded + kPadded + n] = v.d_eff;
     }
 }
 
@@ -195,9 +197,9 @@ void SolidMap::mark_far_bricks(double far) {
   const float threshold = float(far);
   for (std::int32_t& b : brick_of_) {
     if (b < 0) continue;
-    const Node* v = &nodes_[static_cast<std::size_t>(b) * kPadded];
+    const float* v = &nodes_[static_cast<std::size_t>(b) * 2 * kPadded];  // d, then d_eff
     bool beyond = true;
-    for (int n = 0; n < kPadded && beyond; ++n) beyond = v[n].d >= threshold && v[n].d_eff >= threshold;
+    for (int n = 0; n < 2 * kPadded && beyond; ++n) beyond = v[n] >= threshold;
     if (beyond) b = kFluid;
   }
 }
@@ -347,7 +349,6 @@ double SolidMap::trilinear_distance(const Point& q, bool& near) const {
 // at u from it (|u| <= 1/2), then sums along x, y, z in turn.
 template <bool kGradient>
 void SolidMap::spline(const float* v, const int cell[3], const real t[3], real& value, real grad[3]) const {
-  constexpr std::size_t stride = sizeof(Node) / sizeof(float);
   real w[3][3], dw[3][3];
   int first[3];
   for (int a = 0; a < 3; ++a) {
@@ -362,13 +363,13 @@ void SolidMap::spline(const float* v, const int cell[3], const real t[3], real& 
     dw[a][1] = -2 * u;
     dw[a][2] = above;
   }
-  const float* o = v + stride * static_cast<std::size_t>((first[2] * P + first[1]) * P + first[0]);
+  const float* o = v + static_cast<std::size_t>((first[2] * P + first[1]) * P + first[0]);
   real sum = 0, gx = 0, gy = 0, gz = 0;
   for (int c = 0; c < 3; ++c) {
     real s = 0, sy = 0, sx = 0;  // over y: the x sums, their y derivative, the x derivatives
     for (int b = 0; b < 3; ++b) {
-      const float* row = o + stride * static_cast<std::size_t>((c * P + b) * P);
-      const real r0 = row[0], r1 = row[stride], r2 = row[2 * stride];
+      const float* row = o + static_cast<std::size_t>((c * P + b) * P);
+      const real r0 = row[0], r1 = row[1], r2 = row[2];
       const real along = w[0][0] * r0 + w[0][1] * r1 + w[0][2] * r2;
       s += w[1][b] * along;
       if constexpr (kGradient) {
@@ -396,7 +397,7 @@ SolidMap::Where SolidMap::distance(real x, real y, real z, real& d, real grad[3]
   real t[3];
   const std::int32_t brick = brick_at(x, y, z, cell, t);
   if (brick < 0) return brick == kFluid ? Where::fluid : Where::wall;
-  const float* first = &nodes_[static_cast<std::size_t>(brick) * kPadded].d;
+  const float* first = &nodes_[static_cast<std::size_t>(brick) * 2 * kPadded];
   if (grad)
     spline<true>(first, cell, t, d, grad);
   else
@@ -414,7 +415,7 @@ SolidMap::Where SolidMap::fraction(real x, real y, real z, real& f, real grad[3]
     return brick == kFluid ? Where::fluid : Where::wall;
   }
   real d_eff, slope;
-  spline<true>(&nodes_[static_cast<std::size_t>(brick) * kPadded].d_eff, cell, t, d_eff, grad);
+  spline<true>(&nodes_[static_cast<std::size_t>(brick) * 2 * kPadded + kPadded], cell, t, d_eff, grad);
   f = wall_->fraction_both_sides(d_eff, slope);
   for (int a = 0; a < 3; ++a) grad[a] *= slope;
   return Where::near;

@@ -109,7 +109,9 @@ class SolidMap {
   real inv_cell_ = 1, origin_r_[3] = {0, 0, 0};
   std::int64_t bricks_[3] = {0, 0, 0};
   std::vector<std::int32_t> brick_of_;
-  std::vector<Node> nodes_;  // kPadded per active brick
+  // Per active brick, the spline's coefficients of d for its kPadded nodes, then those of
+  // d_eff: a lookup reads one member, so each is contiguous (fewer cache lines per row).
+  std::vector<float> nodes_;
   std::vector<Node> computed_;  // while building: kNodes per active brick
   // Per node, while building: the wall's share of the node's cell and its first moment.
   std::vector<std::array<float, 4>> occupancy_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <omp.h>
 
 #include <fmt/format.h>
@@ -117,6 +118,52 @@ void NeighborGrid::build_lists(const real* x, const real* y, const real* z, doub
                           cell_.data(), cell_start_.data(), {dims_[0], dims_[1], dims_[2]},
                           real(h * h), n};
   offset_.resize(n + 1);
+  one_pass_ = fill_in_one_pass(search);
+  if (!one_pass_) fill_in_two_passes(search);
+  // Each block's pairs, where the next build's segments start.
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  block_pairs_.resize(blocks);
+  for (std::size_t b = 0; b < blocks; ++b)
+    block_pairs_[b] = offset_[std::min(n, (b + 1) * kBlock)] - offset_[b * kBlock];
+}
+
+// Lists move little from one step to the next, so the last build's pairs per block of
+// particles say where each block's lists will fit: each block writes into its own segment
+// (its last pairs, an eighth more and 64) in one pass, and the segments are then moved
+// together in block order. The distance tests run once, not twice (count, then fill); the
+// lists are the same. A block that does not fit sends the build to two passes.
+bool NeighborGrid::fill_in_one_pass(const CellSearch& search) {
+  const std::size_t n = search.n, blocks = (n + kBlock - 1) / kBlock;
+  if (blocks == 0 || block_pairs_.size() != blocks) return false;
+  segment_.resize(blocks + 1);
+  segment_[0] = 0;
+  for (std::size_t b = 0; b < blocks; ++b) segment_[b + 1] = segment_[b] + block_pairs_[b] + block_pairs_[b] / 8 + 64;
+  if (segment_[blocks] > kMostPairs) return false;  // the two passes say whether the pairs fit
+  const std::size_t room = segment_[blocks] + kListPadding;
+  if (list_.capacity() < room) {  // as in the two passes: the old lists go first
+    std::vector<std::uint32_t>().swap(list_);
+    list_.reserve(room + room / 4);
+  }
+  if (list_.size() < room) list_.resize(room);
+  used_.resize(blocks);
+  if (!fill_neighbor_blocks(search, kBlock, blocks, segment_.data(), offset_.data(), list_.data(), used_.data()))
+    return false;
+  std::uint64_t at = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (segment_[b] != at)
+      std::memmove(list_.data() + at, list_.data() + segment_[b], used_[b] * sizeof(std::uint32_t));
+    segment_[b] -= at;  // now how far block b's lists moved
+    at += used_[b];
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) offset_[i] -= static_cast<std::uint32_t>(segment_[i / kBlock]);
+  offset_[n] = static_cast<std::uint32_t>(at);
+  std::fill(list_.begin() + static_cast<std::ptrdiff_t>(at), list_.begin() + static_cast<std::ptrdiff_t>(at + kListPadding), 0u);
+  return true;
+}
+
+void NeighborGrid::fill_in_two_passes(const CellSearch& search) {
+  const std::size_t n = search.n;
   offset_[0] = 0;
   count_neighbors(search, offset_.data() + 1);
   std::uint64_t pairs = 0;  // the running sum, checked against the offsets' range
@@ -135,8 +182,8 @@ void NeighborGrid::build_lists(const real* x, const real* y, const real* z, doub
     std::vector<std::uint32_t>().swap(list_);
     list_.reserve(total + total / 4);
   }
-  list_.resize(total);
-  std::fill(list_.begin() + static_cast<std::ptrdiff_t>(offset_[n]), list_.end(), 0u);
+  list_.resize(std::max(list_.size(), total));
+  std::fill(list_.begin() + static_cast<std::ptrdiff_t>(offset_[n]), list_.begin() + static_cast<std::ptrdiff_t>(total), 0u);
   fill_neighbors(search, offset_.data(), list_.data());
 }
 

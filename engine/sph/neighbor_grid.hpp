@@ -24,6 +24,8 @@
 
 namespace pbf {
 
+struct CellSearch;  // engine/sph/neighbor_search_simd.hpp
+
 class NeighborGrid {
  public:
   // Bins particles into cells; afterwards sorted_order() lists particles cell by cell.
@@ -58,6 +60,8 @@ class NeighborGrid {
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
   double cell_size() const { return cell_size_; }
   double mean_neighbors() const;
+  // Whether the last build_lists took one pass (the lists fitted where the build before said).
+  bool built_in_one_pass() const { return one_pass_; }
   std::uint32_t max_neighbors() const;
 
   // Largest number of cells the grid allocates for n particles.
@@ -76,6 +80,13 @@ class NeighborGrid {
   std::vector<std::vector<std::uint32_t>> histogram_;  // per thread, per cell
   std::vector<std::uint32_t> offset_;       // list of particle i: list_[offset_[i] .. offset_[i+1])
   std::vector<std::uint32_t> list_;         // and kListPadding zeros after the last
+  // The one-pass build (build_lists): pairs per block of kBlock particles at the last build,
+  // and this build's segments and their use.
+  static constexpr std::size_t kBlock = 1024;
+  bool fill_in_one_pass(const CellSearch& search);
+  void fill_in_two_passes(const CellSearch& search);
+  std::vector<std::uint64_t> block_pairs_, segment_, used_;
+  bool one_pass_ = false;
 };
 
 }  // namespace pbf

@@ -3,7 +3,9 @@
 // (SSE4, AVX2, AVX-512, and a scalar fallback); the widest the machine has is chosen at run
 // time. A row of three cells holds its candidates in consecutive slots, so each vector
 // step loads the next N packed positions, compares their squared distances with h^2 and
-// counts the lanes that pass (first pass) or writes their particle indices (second pass).
+// counts the lanes that pass (first pass) or writes their particle indices (second pass);
+// or, when the previous build's sizes say where each block of particles' lists will fit,
+// writes them in one pass.
 // The result does not depend on the vector width: the same test, the same order.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "engine/sph/neighbor_search_simd.cpp"
@@ -90,6 +92,38 @@ void FillNeighbors(const CellSearch& s, const std::uint32_t* offset, std::uint32
   }
 }
 
+bool FillNeighborBlocks(const CellSearch& s, std::size_t block, std::size_t blocks, const std::uint64_t* segment,
+                        std::uint32_t* offset, std::uint32_t* list, std::uint64_t* used) {
+  const hn::ScalableTag<real> d;
+  const std::size_t N = hn::Lanes(d);
+  int overflow = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(| : overflow)
+  for (std::size_t b = 0; b < blocks; ++b) {
+    std::uint32_t* out = list + segment[b];
+    const std::uint32_t* const end = list + segment[b + 1];
+    bool full = false;
+    for (std::size_t i = b * block; i < std::min(s.n, (b + 1) * block) && !full; ++i) {
+      offset[i] = static_cast<std::uint32_t>(out - list);  // below segment[blocks], checked to fit
+      for_each_row(s, i, [&](std::size_t first, std::size_t last, bool own) {
+        for (std::size_t slot = first; slot < last && !full; slot += N) {
+          std::uint8_t bytes[8] = {};
+          hn::StoreMaskBits(d, within(d, s, i, slot, last, own), bytes);
+          std::uint64_t bits;
+          std::memcpy(&bits, bytes, sizeof bits);
+          if (static_cast<std::ptrdiff_t>(__builtin_popcountll(bits)) > end - out) {
+            full = true;
+            break;
+          }
+          for (; bits; bits &= bits - 1) *out++ = s.sorted[slot + static_cast<std::size_t>(__builtin_ctzll(bits))];
+        }
+      });
+    }
+    used[b] = static_cast<std::uint64_t>(out - (list + segment[b]));
+    if (full) overflow = 1;
+  }
+  return overflow == 0;
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace pbf
 HWY_AFTER_NAMESPACE();
@@ -99,6 +133,7 @@ namespace pbf {
 
 HWY_EXPORT(CountNeighbors);
 HWY_EXPORT(FillNeighbors);
+HWY_EXPORT(FillNeighborBlocks);
 
 void count_neighbors(const CellSearch& search, std::uint32_t* counts) {
   HWY_DYNAMIC_DISPATCH(CountNeighbors)(search, counts);
@@ -106,6 +141,12 @@ void count_neighbors(const CellSearch& search, std::uint32_t* counts) {
 
 void fill_neighbors(const CellSearch& search, const std::uint32_t* offset, std::uint32_t* list) {
   HWY_DYNAMIC_DISPATCH(FillNeighbors)(search, offset, list);
+}
+
+bool fill_neighbor_blocks(const CellSearch& search, std::size_t block, std::size_t blocks,
+                          const std::uint64_t* segment, std::uint32_t* offset, std::uint32_t* list,
+                          std::uint64_t* used) {
+  return HWY_DYNAMIC_DISPATCH(FillNeighborBlocks)(search, block, blocks, segment, offset, list, used);
 }
 
 }  // namespace pbf

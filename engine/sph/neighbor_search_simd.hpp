@@ -26,5 +26,12 @@ void count_neighbors(const CellSearch& search, std::uint32_t* counts);
 // Writes particle i's neighbours to list[offset[i] ...], rows of cells in a fixed order
 // (z, then y), slots ascending within a row (in parallel).
 void fill_neighbors(const CellSearch& search, const std::uint32_t* offset, std::uint32_t* list);
+// One pass, no counts: particles [b * block, (b + 1) * block) write their lists, in the same
+// order as fill_neighbors, into list[segment[b] .. segment[b + 1]), offset[i] where particle
+// i's list starts; used[b] is how much of its segment block b filled. False when some block's
+// lists did not fit its segment (the lists are then incomplete).
+bool fill_neighbor_blocks(const CellSearch& search, std::size_t block, std::size_t blocks,
+                          const std::uint64_t* segment, std::uint32_t* offset, std::uint32_t* list,
+                          std::uint64_t* used);
 
 }  // namespace pbf

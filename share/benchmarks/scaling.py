@@ -30,6 +30,9 @@ on both sides. Sub-commands:
            that of a nearly empty run (1,250 particles, 1 step), over the extra particles.
            Each run's peak is its ru_maxrss, read by a fresh Python process that starts
            only that run. --double-binary adds a double build's bytes per particle.
+  mesh     the same dam break in a container read from a box mesh (init_file.lua's
+           walls=mesh: the solid map) against the analytic box, alternately: time per step
+           without the setup (the map's build), and the mesh / box ratio of the medians.
   all      all of the above into one directory (default docs/performance/), with a
            header giving the date, nproc, the CPU, the binary's version and the commit.
 
@@ -77,6 +80,7 @@ DEFAULTS = {
     "weak": dict(particles=2197, steps=100, repeats=5),
     "profile": dict(particles=16000, steps=75, repeats=5),
     "size": dict(particles=8000, steps=20, repeats=3, max_particles=1_000_000),
+    "mesh": dict(particles=33750, steps=75, repeats=7, threads=2),
 }
 QUICK = {
     "compare": dict(particles=3430, steps=10, repeats=1, threads=2),
@@ -84,6 +88,7 @@ QUICK = {
     "weak": dict(particles=500, steps=10, repeats=1),
     "profile": dict(particles=2000, steps=10, repeats=1),
     "size": dict(particles=2000, steps=5, repeats=1, max_particles=8000),
+    "mesh": dict(particles=3430, steps=10, repeats=1, threads=2),
 }
 
 
@@ -258,10 +263,11 @@ with open(sys.argv[1], "w") as f:
 """
 
 
-def run_engine(binary, scene, threads, work):
-    """Run one scene; its timing table, with 'peak_bytes' (the run's peak RSS) added."""
+def run_engine(binary, scene, threads, work, extra=()):
+    """Run one scene (extra: more arguments, such as -v NAME=VALUE); its timing table, with
+    'peak_bytes' (the run's peak RSS) added."""
     cmd = [binary, "run", *log_option(binary), SCENARIO, "-v", f"init={scene}",
-           "-v", f"out={os.path.join(work, 'frames')}", "--threads", str(threads)]
+           "-v", f"out={os.path.join(work, 'frames')}", "--threads", str(threads), *extra]
     what = f"{binary} on {os.path.basename(scene)} with {plural(threads, 'thread')}"
     stats = os.path.join(work, "rusage.txt")
     with tempfile.TemporaryFile("w+", dir=work) as log:
@@ -684,10 +690,43 @@ def plot_size(ax, res):
            title="Time per particle-step against size")
 
 
+# ---------------------------------------------------------------- mesh container
+
+def cmd_mesh(args, work):
+    binary = check_binary(args.binary)
+    repeats, threads = setting(args, "mesh", "repeats"), setting(args, "mesh", "threads")
+    scene, n = make_scene(setting(args, "mesh", "particles"), setting(args, "mesh", "steps"), work)
+    times = {"box": [], "mesh": []}
+    for r in range(repeats):
+        for walls in times:
+            table = run_engine(binary, scene, threads, work, ["-v", f"walls={walls}"])
+            setup = total([e for e in table["stages"] if e["name"].startswith("other")], table)
+            times[walls].append(1000 * (table["wall"] - setup) / table["steps"])
+            progress(f"mesh: run {r + 1}/{repeats}, {walls}: {times[walls][-1]:.2f} ms per step")
+    box_m, mesh_m = median(times["box"]), median(times["mesh"])
+    rows = [[i + 1, f"{b:.2f}", f"{m:.2f}", f"{m / b:.3f}"]
+            for i, (b, m) in enumerate(zip(times["box"], times["mesh"]))]
+    rows.append(["**median**", f"**{box_m:.2f}**", f"**{mesh_m:.2f}**", f"**{mesh_m / box_m:.3f}**"])
+    text = (f"## Mesh container against the box\n\nMilliseconds per step, without the setup (the "
+            f"solid map's build), on the dam break of {n} particles, {table['steps']} steps, "
+            f"{plural(threads, 'thread')}, in the analytic `box` and in a container read from a "
+            f"box mesh (`init_file.lua -v walls=mesh`); the two alternate.\n\n"
+            + md_table(["run", "box", "mesh", "mesh / box"], rows)
+            + f"\n\nMesh / box, the ratio of the medians: **{mesh_m / box_m:.3f}** ({repeats} runs each).")
+
+    def plot(ax):
+        for label in times:
+            ax.plot(range(1, repeats + 1), times[label], "o" if label == "box" else "s", label=label)
+        ax.set(xlabel="run", ylabel="ms per step", ylim=(0, None),
+               title=f"{n} particles: mesh / box = {mesh_m / box_m:.3f}")
+        ax.legend()
+    return "mesh", text, plot
+
+
 # ---------------------------------------------------------------- all, arguments, main
 
 COMMANDS = {"compare": cmd_compare, "strong": cmd_strong, "weak": cmd_weak,
-            "profile": cmd_profile, "size": cmd_size}
+            "profile": cmd_profile, "size": cmd_size, "mesh": cmd_mesh}
 
 
 def cmd_all(args, work):
@@ -722,9 +761,9 @@ def add_options(p, name):
         p.add_argument("--old-binary", help="old pbfengine to use instead of building one")
         p.add_argument("--keep", action="store_true", help="keep the old commit's build")
         p.add_argument("--jobs", type=positive, help="build jobs (default: nproc)")
-    if name in ("compare", "size", "all"):
+    if name in ("compare", "size", "mesh", "all"):
         p.add_argument("--threads", type=positive,
-                       help="threads (compare: 2 by default; size: all cores)")
+                       help="threads (compare and mesh: 2 by default; size: all cores)")
     if name in ("strong", "weak", "profile", "all"):
         p.add_argument("--max-threads", type=positive, help="most threads (default: nproc)")
     if name in ("size", "all"):
