@@ -19,7 +19,8 @@
 -- support (the kernel radius h in spacings, default 2; 2.5 keeps the period within 1% of
 -- linear theory, 2 runs it 7 to 10% fast: docs/validation/standing_wave.md),
 -- dt (default 0.4 h / sqrt(2 g H)), csv (thermo CSV, default none), out (frame directory,
--- default none), solver ("pbf", the default, or "wcsph": share/lua/solvers.lua).
+-- default none), solver ("pbf", the default, or "wcsph": share/lua/solvers.lua, with its alpha,
+-- density and diffusion).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local g = 9.81
@@ -38,7 +39,7 @@ pbf.domain{lo = {0, 0, 0}, hi = {L, W, 2 * H}}
 pbf.kernel_radius(h)
 pbf.timestep(dt)
 -- Column by column: the lattice's sites up to the inclined surface (to the nearest layer).
-local columns = math.floor(L / s + 0.5)
+local columns = math.floor(L / s + 1e-9)       -- each at least a spacing wide: one site across
 for i = 0, columns - 1 do
   local x = (i + 0.5) * L / columns
   local top = H + A * math.cos(k * x)
@@ -49,7 +50,7 @@ end
 pbf.fix("gravity", "gravity", {})
 local solver = var.solver or "pbf"
 if solver == "wcsph" then
-  require("solvers").wcsph{}
+  require("solvers").wcsph{alpha = var.alpha, density = var.density, diffusion = var.diffusion}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})

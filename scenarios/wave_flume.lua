@@ -16,7 +16,7 @@
 -- spacing (m, default 0.02), width (m, default 4 spacings: a 2D-like flume), start (s, when
 -- the paddle starts, default 1), t_end (s, default 9), dt (s, default 0.025 h over the
 -- shallow-water wave speed), iterations, error, max_iterations, one_sided and xsph (pbf's, default
--- 4 iterations, one-sided, XSPH on), out (directory,
+-- 4 iterations, one-sided, XSPH on), alpha, density and diffusion (wcsph's), out (directory,
 -- default "out"; the gauges go to out/gauges.csv), solver ("pbf", the default, or "wcsph");
 -- images, movie and vtk as in every scenario.
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
@@ -45,7 +45,7 @@ print(string.format("wave_flume: %d particles, spacing %.4g m, dt %.3g s, period
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if (var.solver or "pbf") == "wcsph" then
-  require("solvers").wcsph{}
+  require("solvers").wcsph{alpha = var.alpha, density = var.density, diffusion = var.diffusion}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, error = var.error, max_iterations = var.max_iterations,
                          one_sided = not (var.one_sided == 0 or var.one_sided == "false")})

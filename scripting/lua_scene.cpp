@@ -1,5 +1,6 @@
 // The scene functions of the `pbf` table: the domain and settings, particles from lattices
 // and files, and restarts.
+#include <cmath>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -60,9 +61,52 @@ int l_setting(lua_State* L) {
   return 1;
 }
 
+// Gives particles [first, end) the velocity the Lua function at `function` returns for each
+// one's position: velocity = function(x, y, z) return {vx, vy, vz} end.
+void velocities_from_function(lua_State* L, int function, Particles& P, std::size_t first) {
+  for (std::size_t i = first; i < P.size(); ++i) {
+    const double q[3] = {P.x()[i], P.y()[i], P.z()[i]};
+    const std::string what =
+        fmt::format("pbf.lattice: the velocity function at ({:.6g}, {:.6g}, {:.6g})", q[0], q[1], q[2]);
+    lua_pushvalue(L, function);
+    for (double c : q) lua_pushnumber(L, c);
+    if (pcall(L, 3, 1) != LUA_OK) {
+      std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(error object is not a string)";
+      lua_pop(L, 1);
+      throw Error(fmt::format("{} failed: {}", what, message));
+    }
+    Vec3 v;
+    try {
+      v = vec3(L, -1, fmt::format("{}: its result", what).c_str());
+    } catch (...) {
+      lua_pop(L, 1);
+      throw;
+    }
+    lua_pop(L, 1);
+    for (double c : v)
+      if (!std::isfinite(c)) throw Error(fmt::format("{} returned a velocity that is not finite", what));
+    P.vx()[i] = real(v[0]);
+    P.vy()[i] = real(v[1]);
+    P.vz()[i] = real(v[2]);
+  }
+}
+
 int l_lattice(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.lattice");
+  // `velocity` may be a function of position: held aside while the table's other entries are
+  // read, and put back.
+  int velocity_function = 0;
+  if (lua_istable(L, 1)) {
+    lua_getfield(L, 1, "velocity");
+    if (lua_isfunction(L, -1)) {
+      velocity_function = lua_gettop(L);
+      lua_pushnil(L);
+      lua_setfield(L, 1, "velocity");
+    } else {
+      lua_pop(L, 1);
+    }
+  }
   const Params p = table_arg(L, 1, "pbf.lattice",
                              {{"lo", ParamType::Vector3, std::nullopt, "m", "", true},
                               {"hi", ParamType::Vector3, std::nullopt, "m", "", true},
@@ -115,8 +159,14 @@ int l_lattice(lua_State* L) {
   if (p.has("lo")) lo = p.vec3("lo");
   if (p.has("hi")) hi = p.vec3("hi");
   if (!shape && !(p.has("lo") && p.has("hi"))) throw Error("pbf.lattice: give 'lo' and 'hi' (or a 'mesh' to fill)");
-  lua_pushinteger(L, static_cast<lua_Integer>(
-                         add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data(), shape.get())));
+  const std::size_t first = S.sim.particles().size();
+  const std::size_t added = add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data(), shape.get());
+  if (velocity_function) {
+    lua_pushvalue(L, velocity_function);
+    lua_setfield(L, 1, "velocity");
+    velocities_from_function(L, velocity_function, S.sim.particles(), first);
+  }
+  lua_pushinteger(L, static_cast<lua_Integer>(added));
   return 1;
 }
 

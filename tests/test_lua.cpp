@@ -121,6 +121,42 @@ TEST(Lua, ComputesAreReadableAndCallbacksRun) {
   EXPECT_NE(r.output.find("done"), std::string::npos);
 }
 
+TEST(Lua, ALatticesVelocityMayBeAFunctionOfPosition) {
+  // v = (x, 2y, -z) on the 2 x 2 x 2 sites at 0.005 and 0.015 m: the fastest, at (0.015,
+  // 0.015, 0.015), moves at 0.015 sqrt(6) m/s, and the kinetic energy is m/2 times the sum of
+  // |v|^2 over the sites, with m the lattice's mass.
+  Script s(
+      "pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}\npbf.kernel_radius(0.02)\npbf.timestep(0.002)\n"
+      "local t = {lo = {0, 0, 0}, hi = {0.02, 0.02, 0.02}, spacing = 0.01,\n"
+      "           velocity = function(x, y, z) return {x, 2 * y, -z} end}\n"
+      "assert(pbf.lattice(t) == 8 and type(t.velocity) == 'function')\n"
+      "pbf.compute('v', 'speed')\npbf.compute('ke', 'kinetic_energy')\npbf.run(0)\n"
+      "local sum = 0\n"
+      "for _, x in ipairs{0.005, 0.015} do for _, y in ipairs{0.005, 0.015} do for _, z in ipairs{0.005, 0.015} do\n"
+      "  sum = sum + x * x + 4 * y * y + z * z end end end\n"
+      "local m = pbf.value('ke') / (0.5 * sum)\n"
+      "assert(math.abs(pbf.value('v').max / (0.015 * math.sqrt(6)) - 1) < 1e-6, pbf.value('v').max)\n"
+      "assert(m > 0.9e-3 and m < 1.1e-3, m)  -- the lattice's mass, about rho0 s^3\n"
+      "print('done')\n");
+  auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("done"), std::string::npos) << r.output;
+  // What the function gives must be a finite vector, and its errors name it and the site.
+  const std::pair<std::string, std::string> bad[] = {
+      {"return nil", "at (0.005, 0.005, 0.005): its result must be a vector {x, y, z}"},
+      {"return {0/0, 0, 0}", "at (0.005, 0.005, 0.005) returned a velocity that is not finite"},
+      {"error('nope')", "at (0.005, 0.005, 0.005) failed: "}};
+  for (const auto& [body, message] : bad) {
+    Script b("pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}\npbf.kernel_radius(0.02)\n"
+             "pbf.lattice{lo = {0, 0, 0}, hi = {0.02, 0.02, 0.02}, spacing = 0.01,\n"
+             "            velocity = function(x, y, z) " + body + " end}\n");
+    auto rb = run_engine("run " + b.path.string());
+    EXPECT_EQ(rb.code, 1) << body;
+    EXPECT_NE(rb.output.find(b.path.string() + ":3: pbf.lattice: the velocity function " + message), std::string::npos)
+        << rb.output;
+  }
+}
+
 TEST(Lua, ErrorInACallbackNamesTheCallbackLine) {
   Script s(kScene + "pbf.every('cb', 2, function(step)\n  if step == 4 then error('stop here') end\nend)\npbf.run(10)\n");
   auto r = run_engine("run " + s.path.string());

@@ -12,8 +12,9 @@
 //  - after the velocity update, a particle on the wall loses its velocity into the wall and,
 //    with friction, its tangential velocity at a rate per second (exp(-rate dt) per step),
 //    or all of it with no_slip.
-// Particles created inside the wall are left out at the start of a run, with their count
-// in the log.
+// Particles created inside the wall, or nearer to it than the contact distance, are left out
+// at the start of the first run, with their count in the log (those within a tenth of a
+// spacing of it are moved out to it instead); at later runs, those inside it.
 // A solid may move (`motion`: a function of time or keyframes, engine/geometry/motion.hpp).
 // The map stays in the frame where the scene placed the solid; a query at x in the world
 // asks it at T(t)^-1 x, with T(t) the solid's pose. Over a step the wall goes from T0 = T(t)
@@ -139,23 +140,44 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     move_to(sim.time());
     prepare(sim);
     auto& P = sim.particles();
-    const real *x = P.x(), *y = P.y(), *z = P.z();
+    real *x = P.x(), *y = P.y(), *z = P.z();
+    // In a scene not yet stepped, a particle nearer than the contact distance would be put
+    // back there by the first projection, and gain (gap - d) / dt of speed from it: a splash
+    // at the start. One much nearer stands for volume that is partly inside the wall (whose
+    // density counts from its surface), and is left out; one within a tenth of a spacing of
+    // the contact distance (a lattice laid along the wall, read through the map's few
+    // hundredths of a spacing of interpolation error) is moved out to it now, before it has a
+    // velocity. Once the scene has run (a later run, a restart), only fluid inside the wall
+    // is left out: the rest is the run's own, and is kept as it is, bit for bit.
+    const bool fresh = sim.step() == 0;
+    const real closest = fresh ? real(gap() - 0.1 * spacing_) : real(0), target = fresh ? real(gap()) : real(0);
     std::vector<char> drop(P.size(), 0);
-#pragma omp parallel for schedule(static)
+    std::size_t moved = 0;
+#pragma omp parallel for schedule(static) reduction(+ : moved)
     for (std::size_t i = 0; i < P.size(); ++i) {
       real d, g[3];
       const real q[3] = {x[i], y[i], z[i]};
       const auto where = distance_at(now_, q, d, g);
-      drop[i] = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < 0);
+      drop[i] = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < closest);
+      const real len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      if (!drop[i] && where == SolidMap::Where::near && d < target && len > 0) {
+        const real step = (target - d) / len;
+        x[i] += step * g[0];
+        y[i] += step * g[1];
+        z[i] += step * g[2];
+        ++moved;
+      }
     }
     const std::size_t removed = P.remove(drop);
     if (P.size() == 0)
       throw Error(fmt::format("solid '{}' ({} it) leaves no particle: every one was created inside the wall", id(),
                               fluid_inside_ ? "fluid inside" : "fluid outside"));
-    if (removed > 0) {
-      spdlog::info("solid '{}': left out {} particles created inside it", id(), removed);
-      sim.positions_changed();
-    }
+    if (removed > 0)
+      spdlog::info("solid '{}': left out {} particles created inside it or nearer than its contact distance", id(),
+                   removed);
+    if (moved > 0)
+      spdlog::debug("solid '{}': moved {} particles out to its contact distance", id(), moved);
+    if (removed > 0 || moved > 0) sim.positions_changed();
   }
 
   void init(Simulation& sim) override {
@@ -215,6 +237,16 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const real rho0 = real(sim.rest_density());
     rho += rho0 * f;
     for (int a = 0; a < 3; ++a) grad[a] += rho0 * g[a];
+  }
+
+  // The wall's velocity at q over the step: where that point of the wall was at the step's
+  // start, to where it is at its end (now_, once external_forces has moved it).
+  bool wall_velocity(const Simulation& sim, const real q[3], real v[3]) const override {
+    if (!motion_) return false;
+    const Point was = before_.apply(now_.apply_inverse({double(q[0]), double(q[1]), double(q[2])}));
+    const double inv_dt = 1 / sim.timestep();
+    for (int a = 0; a < 3; ++a) v[a] = real((q[a] - was[a]) * inv_dt);
+    return true;
   }
 
   // Where each particle starts the step, in the wall's frame, and how far it is from the wall
@@ -288,7 +320,6 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const real keep = no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
     const real* m = P.mass();
     const real touching = real(contact_tolerance());
-    const double inv_dt = 1 / sim.timestep();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < P.size(); ++i) {
       real d, g[3];
@@ -303,13 +334,8 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       const real len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
       if (len == 0) continue;
       const real nrm[3] = {g[0] / len, g[1] / len, g[2] / len};
-      // The wall's velocity where the particle touches it: where that point of the wall was
-      // at the step's start.
       real wall[3] = {0, 0, 0};
-      if (motion_) {
-        const Point was = before_.apply(now_.apply_inverse({double(q[0]), double(q[1]), double(q[2])}));
-        for (int a = 0; a < 3; ++a) wall[a] = real((q[a] - was[a]) * inv_dt);
-      }
+      wall_velocity(sim, q, wall);
       const real rel[3] = {vx[i] - wall[0], vy[i] - wall[1], vz[i] - wall[2]};
       real vn = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
       if (vn > 0) vn = 0;  // leaving the wall: keep it

@@ -3,6 +3,7 @@
 //   density     summation: rho_i = sum_j m_j W(x_ij) + walls (the density every style
 //               and compute of the engine uses, and the one the mass rule sets to rho0), or
 //               continuity: rho_i += dt sum_j m_j (v_i - v_j) . gradW_ij  [+ dt D_i]
+//               + dt 2 (v_i - v_wall) . grad(rho_wall)  (a moving wall at its own velocity)
 //   diffusion   (continuity only; delta-SPH, Molteni & Colagrossi 2009, with the hydrostatic
 //               part left out as Fourtakas et al. 2019 do, so that a column at rest keeps its
 //               density profile):
@@ -124,10 +125,18 @@ class Wcsph : public Fix {
         });
         sum += diffusion * diffused;
         // Walls as mirrored fluid: the mirror image moves with the normal velocity reversed,
-        // so approaching a wall raises the density by 2 v . grad(rho_wall).
-        real wall_rho = 0, grad[3] = {0, 0, 0};
-        for (const DensityBoundary* w : walls) w->add_density(sim, x[i], y[i], z[i], i, wall_rho, grad);
-        drho_[i] = sum + 2 * (vx[i] * grad[0] + vy[i] * grad[1] + vz[i] * grad[2]);
+        // so approaching a wall raises the density by 2 (v - v_wall) . grad(rho_wall).
+        real wall_rho = 0, grad[3] = {0, 0, 0}, moving = 0;
+        for (const DensityBoundary* w : walls) {
+          const real before[3] = {grad[0], grad[1], grad[2]};
+          w->add_density(sim, x[i], y[i], z[i], i, wall_rho, grad);
+          const real own[3] = {grad[0] - before[0], grad[1] - before[1], grad[2] - before[2]};
+          const real q[3] = {x[i], y[i], z[i]};
+          real vw[3];
+          if ((own[0] != 0 || own[1] != 0 || own[2] != 0) && w->wall_velocity(sim, q, vw))
+            moving += vw[0] * own[0] + vw[1] * own[1] + vw[2] * own[2];
+        }
+        drho_[i] = sum + 2 * (vx[i] * grad[0] + vy[i] * grad[1] + vz[i] * grad[2]) - 2 * moving;
       }
       for (std::size_t i = 0; i < n; ++i) rho[i] += dt * drho_[i];
     }

@@ -21,6 +21,10 @@ class DensityBoundary {
   static constexpr std::size_t kNoParticle = ~std::size_t(0);
   virtual void add_density(const Simulation& sim, real x, real y, real z, std::size_t particle, real& rho,
                            real grad[3]) const = 0;
+  // The wall's velocity at (x, y, z) over the current step, into `v`; false (and `v` left
+  // alone) for a wall at rest. A density that is integrated in time (WCSPH's continuity
+  // equation) sees the fluid approach the wall at its velocity relative to the wall.
+  virtual bool wall_velocity(const Simulation& /*sim*/, const real /*q*/[3], real /*v*/[3]) const { return false; }
   // The solver's term for this boundary gave particle i (memory index) the momentum
   // `momentum` (kg m/s) in this step: a boundary that reports the load on itself adds it up
   // (Newton's third law). Called from parallel loops, each index by one thread at a time.
