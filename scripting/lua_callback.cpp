@@ -24,11 +24,8 @@ class LuaCallback : public Fix {
     lua_pushinteger(L_, static_cast<lua_Integer>(sim.step()));
     lua_pushnumber(L_, sim.time());
     if (lua::pcall(L_, 2, 0) != LUA_OK) {
-      // The message handler has made the error a string that says FILE:LINE (out of memory
-      // aside, where Lua calls no handler).
-      std::string message = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "(error object is not a string)";
-      lua_pop(L_, 1);
-      throw Error(message, true);
+      // The message handler has made the error a string that says FILE:LINE.
+      throw Error(lua::pop_error(L_), true);
     }
   }
 

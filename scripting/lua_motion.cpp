@@ -75,11 +75,7 @@ class FunctionMotion : public Motion {
     const std::string what = fmt::format("the motion function ({}) at t = {}", where_, t);
     lua_rawgeti(L_, LUA_REGISTRYINDEX, ref_);
     lua_pushnumber(L_, t);
-    if (pcall(L_, 1, 1) != LUA_OK) {
-      std::string message = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "(error object is not a string)";
-      lua_pop(L_, 1);
-      throw Error(fmt::format("{}: {}", what, message), true);
-    }
+    if (pcall(L_, 1, 1) != LUA_OK) throw Error(fmt::format("{}: {}", what, pop_error(L_)), true);
     if (lua_type(L_, -1) != LUA_TTABLE) {
       const std::string type = luaL_typename(L_, -1);
       lua_pop(L_, 1);

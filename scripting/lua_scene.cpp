@@ -70,11 +70,7 @@ void velocities_from_function(lua_State* L, int function, Particles& P, std::siz
         fmt::format("pbf.lattice: the velocity function at ({:.6g}, {:.6g}, {:.6g})", q[0], q[1], q[2]);
     lua_pushvalue(L, function);
     for (double c : q) lua_pushnumber(L, c);
-    if (pcall(L, 3, 1) != LUA_OK) {
-      std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(error object is not a string)";
-      lua_pop(L, 1);
-      throw Error(fmt::format("{} failed: {}", what, message));
-    }
+    if (pcall(L, 3, 1) != LUA_OK) throw Error(fmt::format("{} failed: {}", what, pop_error(L)));
     Vec3 v;
     try {
       v = vec3(L, -1, fmt::format("{}: its result", what).c_str());

@@ -102,6 +102,12 @@ int pcall(lua_State* L, int nargs, int nresults) {
   return status;
 }
 
+std::string pop_error(lua_State* L) {
+  std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(error object is not a string)";
+  lua_pop(L, 1);
+  return message;
+}
+
 double number(lua_State* L, int index, const char* what) {
   int ok = 0;
   const lua_Number v = lua_tonumberx(L, index, &ok);

@@ -25,6 +25,9 @@ bool has_position(const char* message);
 // error(msg, 0)) gets the line of the innermost Lua function. Messages the engine raised
 // through `guarded` pass unchanged. Calls the function below `nargs` arguments on the stack.
 int pcall(lua_State* L, int nargs, int nresults);
+// After a failed pcall: the error on top of the stack as text (the message handler makes it a
+// string; out of memory aside), popped.
+std::string pop_error(lua_State* L);
 // Marks the message on top of the stack as the engine's (see pcall); used by `guarded`.
 void mark_engine_error(lua_State* L);
 

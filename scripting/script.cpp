@@ -381,8 +381,7 @@ void Script::run_file(const std::string& path) {
   }
   const int status = lua::pcall(L, 0, 0);
   if (status != LUA_OK) {
-    std::string message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error object is not a string";
-    lua_pop(L, 1);
+    std::string message = lua::pop_error(L);
     if (state_->interrupted) throw *state_->interrupted;
     // Out of memory and errors in the message handler, where Lua calls no handler, come
     // without a place: the script's.
