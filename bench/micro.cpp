@@ -7,7 +7,9 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstddef>
 #include <exception>
+#include <vector>
 
 #include "bench/fixture.hpp"
 #include "bench/flops.hpp"
@@ -101,6 +103,33 @@ BENCHMARK_DEFINE_F(dambreak, xsph)(benchmark::State& state) {
   if (!finite(sim())) state.SkipWithError("velocities became NaN or infinite");
 }
 BENCHMARK_REGISTER_F(dambreak, xsph)->Apply(sizes);
+
+// The bare walk over the neighbour lists that every pass makes: each particle's neighbours,
+// their coordinates gathered, and nothing computed but the squared distances' sum. No physics,
+// so what limits it is the machine's memory (the gathers through the shared L3); its speed-up
+// from 1 to 2 threads (OMP_NUM_THREADS) is the most a pass can get on this machine
+// (docs/performance.md, "The targets missed, and why").
+BENCHMARK_DEFINE_F(dambreak, list_walk)(benchmark::State& state) {
+  const auto& P = sim().particles();
+  const auto& grid = sim().neighbors();
+  const real *x = P.x(), *y = P.y(), *z = P.z();
+  const auto n = static_cast<std::ptrdiff_t>(P.size());
+  std::vector<real> sums(P.size());
+  LoopClock clock;
+  for (auto _ : state) {
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+      real sum = 0;
+      grid.for_each_neighbor(static_cast<std::size_t>(i), x, y, z,
+                             [&](std::uint32_t, real, real, real, real r2) { sum += r2; });
+      sums[static_cast<std::size_t>(i)] = sum;
+    }
+    benchmark::DoNotOptimize(sums.data());
+    benchmark::ClobberMemory();
+  }
+  report(state, clock, P.size(), mean_neighbors(), 0, 0);
+}
+BENCHMARK_REGISTER_F(dambreak, list_walk)->Apply(sizes);
 
 // A whole step, sim.run(1): every stage, the lists, the reordering every 20 steps, the
 // checks, and what a run costs on top of its steps (each fix's init, the timing table).
