@@ -20,7 +20,7 @@
 -- linear theory, 2 runs it 7 to 10% fast: docs/validation/standing_wave.md),
 -- dt (default 0.4 h / sqrt(2 g H)), csv (thermo CSV, default none), out (frame directory,
 -- default none), solver ("pbf", the default, or "wcsph": share/lua/solvers.lua, with its alpha,
--- density and diffusion).
+-- density, diffusion and negative_pressure).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local g = 9.81
@@ -50,7 +50,8 @@ end
 pbf.fix("gravity", "gravity", {})
 local solver = var.solver or "pbf"
 if solver == "wcsph" then
-  require("solvers").wcsph{alpha = var.alpha, density = var.density, diffusion = var.diffusion}
+  require("solvers").wcsph{alpha = var.alpha, density = var.density, diffusion = var.diffusion,
+                              negative_pressure = var.negative_pressure}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})

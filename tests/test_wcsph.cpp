@@ -29,7 +29,7 @@ namespace {
 
 const std::string kShare = std::string(PBF_SOURCE_DIR) + "/share";
 
-// Lines 1-9: a column of water H high on an H/2 square floor (2000 particles at spacing
+// Lines 1-10: a column of water H high on an H/2 square floor (2000 particles at spacing
 // s = H/10, h = 2s), gravity, the WCSPH pipeline of share/lua/solvers.lua, box walls.
 const std::string kColumn =
     "package.path = var.share .. '/lua/?.lua;' .. package.path\n"
@@ -39,7 +39,8 @@ const std::string kColumn =
     "pbf.timestep(var.dt or 0.4 * 2 * s / math.sqrt(2 * 9.81 * H))\n"
     "pbf.lattice{lo = {0, 0, 0}, hi = {H / 2, H / 2, H}, spacing = s}\n"
     "pbf.fix('gravity', 'gravity', {})\n"
-    "require('solvers').wcsph{fixed_dt = var.fixed_dt, density = var.density, diffusion = var.diffusion}\n"
+    "require('solvers').wcsph{fixed_dt = var.fixed_dt, density = var.density, diffusion = var.diffusion,\n"
+    "                          negative_pressure = var.negative_pressure}\n"
     "pbf.fix('walls', 'box', {})\n";
 
 using pbf::test::read_frame_rows;
@@ -347,6 +348,24 @@ TEST(Wcsph, DiffusionWithTheSummedDensityIsRefused) {
   auto r = run_column(dir, "pbf.run_until(0.01)\n", " -v density=summation -v diffusion=0.1");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("'diffusion'"), std::string::npos) << r.output;
+}
+
+// solvers.lua passes `negative_pressure` through, "true" and "false" from -v as booleans: the
+// column's summed density is short of rho0 within h of its free surface from the first step,
+// so kept pressures go negative there and clamped ones do not.
+TEST(Wcsph, NegativePressureFromTheCommandLine) {
+  for (const std::string keep : {"true", "false"}) {
+    const auto dir = temp_dir("wcsph-negative-" + keep);
+    auto r = run_column(dir, "pbf.run(2)\n"
+                             "pbf.fix('p', 'dump/text', {path = var.dir .. '/p_*.txt', interval = 1,\n"
+                             "  fields = {'pressure'}})\npbf.run(1)\n",
+                        " -v density=summation -v negative_pressure=" + keep);
+    ASSERT_EQ(r.code, 0) << r.output;
+    double lowest = 0;
+    for (const auto& row : read_frame_rows(dir / "p_00000.txt")) lowest = std::min(lowest, row[0]);
+    if (keep == "true") EXPECT_LT(lowest, -10.0) << "a surface short of rho0 keeps its negative pressure";
+    else EXPECT_EQ(lowest, 0.0);
+  }
 }
 
 // `density` and `density_error` are the density the solver uses; the SPH sum has its own

@@ -120,7 +120,7 @@ def main():
             ax.set_ylabel("eta (mm)")
             ax.legend(loc="upper left", fontsize=8)
         np.atleast_1d(axes)[-1].set_xlabel("t (s)")
-        fig.suptitle(f"piston wavemaker, T = {args.period} s, S = {args.stroke * 1000:.0f} mm, d = {args.depth} m "
+        fig.suptitle(f"piston wavemaker, T = {args.period} s, S = {args.stroke * 1000:.0f} mm, d = {args.depth:.3f} m\n"
                      f"(dashed: linear theory's +-H/2; waves counted right of the grey line)", fontsize=9)
         fig.tight_layout()
         fig.savefig(args.plot, dpi=110)
