@@ -20,7 +20,10 @@
 --                 continuity density), to wcsph)
 --   spacing       particle spacing (m), default 0.03; adjusted to the nearest spacing that
 --                 divides the column's height 0.55 m into whole layers (0.04 -> 0.03929,
---                 0.03 -> 0.03056, 0.02 -> 0.01964); h = 2 spacing
+--                 0.03 -> 0.03056, 0.02 -> 0.01964); h = support x spacing
+--   support       the kernel's radius in spacings, default 2
+--   lid           the height of the tank's closed top (m), default 1 (the experiment's tank
+--                 is open: a higher lid lets a splash rise as it would there)
 --   t_end         simulated time (s), default 2
 --   out           output directory, default "out/spheric" (created)
 --   probes        1 (default): the probe, gauge and sample styles; 0 leaves them out
@@ -50,7 +53,8 @@ local probes = not (var.probes == 0 or var.probes == "0" or var.probes == "false
 local g = 9.81
 
 -- The experiment (spheric_test2_geometry.csv).
-local L, W, Ht = 3.22, 1.0, 1.0                   -- the tank
+local L, W = 3.22, 1.0                            -- the tank
+local Ht = var.lid or 1.0                         -- its lid (the experiment's tank is open)
 local col_x0, col_len, col_h = 1.992, 1.228, 0.55 -- the water column, against the wall x = L
 local box_lo, box_hi = {0.6635, 0.2955, 0.0}, {0.8245, 0.6985, 0.161}
 local sensors = {                                 -- x, y, z, and the normal into the fluid
@@ -66,7 +70,7 @@ local nz = math.max(3, math.floor(col_h / (var.spacing or 0.03) + 0.5))
 local s = col_h / nz
 local nx = math.floor(col_len / s + 0.5)          -- the column's length to the nearest layer
 local ny = math.floor(W / s)                      -- as many layers as fit across, centred
-local h = 2 * s
+local h = (var.support or 2) * s
 local dt = var.dt or 0.4 * h / math.sqrt(2 * g * col_h)
 local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * g * col_h)) or dt
 
