@@ -12,19 +12,20 @@
 --                                          [-v spacing=0.02] [-v t_end=9] [-v out=out]
 --   pbfengine run scenarios/wave_flume.lua -v images=0.1   (pictures, out/image_*.png)
 --
--- Linear theory's wave (within 10% at x = 0.6 m) comes from WCSPH with a kernel radius of 2.5
--- spacings and no density diffusion; PBF's waves come out 18% lower there (its numerical
--- damping; docs/validation/wave_flume.md):
---   pbfengine run scenarios/wave_flume.lua -v solver=wcsph -v alpha=0.02 -v density=continuity \
---                                          -v diffusion=0 -v support=2.5
+-- The defaults make linear theory's wave (within 10% at x = 0.6 m, T = 1.0 and 1.4 s; about 7
+-- minutes on 2 cores): WCSPH with alpha 0.02, the continuity density without diffusion (which
+-- would damp the waves and lower the still level), and a kernel radius of 2.5 spacings (at 2
+-- the waves run 8 to 12% fast, so the paddle makes them long and low). PBF (-v solver=pbf)
+-- makes them 18% low at x = 0.6 m: its numerical damping (docs/validation/wave_flume.md).
 --
 -- Variables: period (s, default 1.0), stroke (m, default 0.04), depth (m, default 0.3),
--- spacing (m, default 0.02), support (the kernel's radius in spacings, default 2), width (m,
+-- spacing (m, default 0.02), support (the kernel's radius in spacings, default 2.5), width (m,
 -- default 4 spacings: a 2D-like flume), start (s, when the paddle starts, default 1), t_end (s,
--- default 9), dt (s, default 0.025 h over the shallow-water wave speed), iterations, error,
--- max_iterations, one_sided and xsph (pbf's, default 4 iterations, one-sided, XSPH on), alpha,
--- density, diffusion and negative_pressure (wcsph's), out (directory, default "out"; the gauges
--- go to out/gauges.csv), solver ("pbf", the default, or "wcsph"); images, movie and vtk as in
+-- default 9), dt (s, default 0.025 h over the shallow-water wave speed; WCSPH's cfl takes
+-- smaller steps), solver ("wcsph", the default, or "pbf"), alpha (default 0.02), density
+-- (default "continuity"), diffusion (default 0) and negative_pressure (wcsph's), iterations,
+-- error, max_iterations, one_sided and xsph (pbf's, default 4 iterations, one-sided, XSPH on),
+-- out (directory, default "out"; the gauges go to out/gauges.csv); images, movie and vtk as in
 -- every scenario.
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
@@ -36,25 +37,25 @@ local s = var.spacing or 0.02
 local W = var.width or 4 * s
 local t_end = var.t_end or 9
 local out = var.out or "out"
+local solver = var.solver or "wcsph"
+assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
 local L, top = 6.0, 2 * d              -- the flume, and the domain's height
 local back = 0.1                       -- room behind the paddle's face (x < 0)
-local h = (var.support or 2) * s     -- the kernel's radius
+local h = (var.support or 2.5) * s   -- the kernel's radius
 -- A small step: at 8 times this one PBF's waves lost a further fifth of their height (0.02 m).
--- What they lose at it is the fluid's numerical damping, which at finer spacings grows as the
--- step shrinks (docs/validation/wave_flume.md).
 local dt = var.dt or 0.025 * h / math.sqrt(g * d)
 
 pbf.domain{lo = {-back, 0, 0}, hi = {L, W, top}}
 pbf.kernel_radius(h)
 pbf.timestep(dt)
 local n = pbf.lattice{lo = {0, 0, 0}, hi = {L, W, d}, spacing = s}
-print(string.format("wave_flume: %d particles, spacing %.4g m, dt %.3g s, period %g s, stroke %g m, depth %g m", n,
-                    s, dt, T, S, d))
+print(string.format("wave_flume (%s): %d particles, spacing %.4g m, h %.4g m, dt %.3g s, period %g s, stroke %g m, depth %g m", solver, n,
+                    s, h, dt, T, S, d))
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
-if (var.solver or "pbf") == "wcsph" then
-  require("solvers").wcsph{alpha = var.alpha, density = var.density, diffusion = var.diffusion,
-                              negative_pressure = var.negative_pressure}
+if solver == "wcsph" then
+  require("solvers").wcsph{alpha = var.alpha or 0.02, density = var.density or "continuity",
+                           diffusion = var.diffusion or 0, negative_pressure = var.negative_pressure}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, error = var.error, max_iterations = var.max_iterations,
                          one_sided = not (var.one_sided == 0 or var.one_sided == "false")})
