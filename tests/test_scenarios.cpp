@@ -169,26 +169,29 @@ TEST(Obstacle, SurgeMeetsTheRampSameBitsAtOneAndTwoThreads) {
 }
 
 // The wave flume (a paddle driven by a Lua function, gauges sampled to a CSV) writes the same
-// bytes at 1 and 2 threads: its ParaView frames, the paddle's surface at each frame (it moves,
-// so each frame has its own), and the gauges' CSV.
+// bytes at 1 and 2 threads with either solver: its ParaView frames, the paddle's surface at
+// each frame (it moves, so each frame has its own), and the gauges' CSV.
 TEST(WaveFlume, PaddleAndGaugesSameBitsAtOneAndTwoThreads) {
-  const auto dir = pbf::test::temp_dir("flume");
-  for (int t : {1, 2}) {
-    auto r = run_engine("run " + scenario("wave_flume.lua") + " -v spacing=0.04 -v start=0 -v t_end=0.3 -v vtk=0.1 " +
-                        "--threads " + std::to_string(t) + " -v out=" + (dir / std::to_string(t)).string());
-    ASSERT_EQ(r.code, 0) << r.output;
+  for (const std::string solver : {"wcsph", "pbf"}) {
+    const auto dir = pbf::test::temp_dir("flume-" + solver);
+    for (int t : {1, 2}) {
+      auto r = run_engine("run " + scenario("wave_flume.lua") + " -v solver=" + solver +
+                          " -v spacing=0.04 -v start=0 -v t_end=0.3 -v vtk=0.1 --threads " + std::to_string(t) +
+                          " -v out=" + (dir / std::to_string(t)).string());
+      ASSERT_EQ(r.code, 0) << r.output;
+    }
+    int compared = 0, paddles = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir / "1" / "vtk")) {
+      const auto other = dir / "2" / "vtk" / e.path().filename();
+      ASSERT_TRUE(std::filesystem::exists(other)) << other;
+      EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(other)) << solver << " " << e.path().filename();
+      paddles += e.path().filename().string().find("paddle") != std::string::npos;
+      ++compared;
+    }
+    EXPECT_GE(paddles, 3) << solver;  // the paddle's surface at t = 0.1, 0.2, 0.3 s (t = 0 too, unless it had not moved)
+    EXPECT_EQ(pbf::test::read_file(dir / "1" / "gauges.csv"), pbf::test::read_file(dir / "2" / "gauges.csv")) << solver;
+    EXPECT_GE(compared, 8) << solver;
   }
-  int compared = 0, paddles = 0;
-  for (const auto& e : std::filesystem::directory_iterator(dir / "1" / "vtk")) {
-    const auto other = dir / "2" / "vtk" / e.path().filename();
-    ASSERT_TRUE(std::filesystem::exists(other)) << other;
-    EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(other)) << e.path().filename();
-    paddles += e.path().filename().string().find("paddle") != std::string::npos;
-    ++compared;
-  }
-  EXPECT_GE(paddles, 3);  // the paddle's surface at t = 0.1, 0.2, 0.3 s (t = 0 too, unless it had not moved)
-  EXPECT_EQ(pbf::test::read_file(dir / "1" / "gauges.csv"), pbf::test::read_file(dir / "2" / "gauges.csv"));
-  EXPECT_GE(compared, 8);
 }
 
 TEST(InitFile, RunsASceneFromTheGeneratorAtItsOutputInterval) {

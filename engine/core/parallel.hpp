@@ -1,33 +1,35 @@
 #pragma once
-// Deterministic reductions: partial sums over fixed blocks of particles (independent of
-// the thread count), combined in block order, so a sum has the same bits on 1 or 64 threads.
+// Deterministic reductions: sums whose bits do not depend on how the terms are shared out.
+// Each thread adds its terms into an exact accumulator (engine/core/exact_sum.hpp) and the
+// accumulators are merged exactly, so the sum is the exact sum of the terms rounded once: the
+// same bits on 1 or 64 threads, in any memory order of the particles (and, merged as integers,
+// across processes).
+#include <omp.h>
+
 #include <cstddef>
 #include <vector>
 
-namespace pbf {
+#include "engine/core/exact_sum.hpp"
 
-inline constexpr std::size_t kReduceBlock = 2048;
+namespace pbf {
 
 // Sums term(i) for i in [0, n); Term returns double.
 template <class Term>
 double deterministic_sum(std::size_t n, Term&& term) {
-  const std::size_t blocks = (n + kReduceBlock - 1) / kReduceBlock;
   // Kept between calls by the thread that takes the sum (outside parallel regions), so that a
-  // step allocates nothing; the threads of the loop write through a plain pointer (each has
-  // a thread_local of its own).
-  static thread_local std::vector<double> kept;
-  kept.assign(blocks, 0.0);
-  double* partial = kept.data();
-#pragma omp parallel for schedule(static)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t end = (b + 1) * kReduceBlock < n ? (b + 1) * kReduceBlock : n;
-    double s = 0;
-    for (std::size_t i = b * kReduceBlock; i < end; ++i) s += term(i);
-    partial[b] = s;
+  // step allocates nothing; one accumulator per thread of the loop.
+  static thread_local std::vector<ExactSum> kept;
+  kept.assign(static_cast<std::size_t>(omp_get_max_threads()), ExactSum{});
+  ExactSum* partial = kept.data();
+#pragma omp parallel
+  {
+    ExactSum& mine = partial[omp_get_thread_num()];
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) mine.add(term(i));
   }
-  double total = 0;
-  for (std::size_t b = 0; b < blocks; ++b) total += partial[b];
-  return total;
+  ExactSum total;
+  for (const ExactSum& p : kept) total.merge(p);
+  return total.value();
 }
 
 }  // namespace pbf
