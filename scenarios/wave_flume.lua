@@ -87,7 +87,9 @@ end
 pbf.compute("eta", "gauge", {points = feet, labels = labels})
 pbf.fix("gauges", "sample", {computes = {"eta"}, interval = 0.01, file = out .. "/gauges.csv"})
 
-require("outputs").add(out, {color = "speed", min = 0, max = 0.3, direction = {0.3, 1.5, -0.4}})
+-- Pictures from the side, of the paddle and the first 3 m, where the gauges stand.
+require("outputs").add(out, {color = "speed", min = 0, max = 0.3, direction = {0, 1, -0.12}, center = {1.45, 0.5 * W, 0.3},
+                             zoom = 4, width = 1600, height = 480})
 pbf.compute("v", "speed")
 pbf.thermo{every = math.max(1, math.floor(0.25 / dt)), columns = {"step", "time", "v.max", "eta.x060", "eta.x100"}}
 pbf.run_until(t_end)

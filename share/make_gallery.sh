@@ -2,7 +2,7 @@
 # Makes the pictures of docs/gallery.md and the README with the scenarios themselves: each
 # runs with -v images=T (dump/image) and the chosen frames are copied into docs/.
 #
-#   share/make_gallery.sh [PBFENGINE]        (about two minutes on 2 cores)
+#   share/make_gallery.sh [PBFENGINE]        (about six minutes on 2 cores)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 engine="${1:-$root/build/pbfengine}"
@@ -14,11 +14,13 @@ run "$root/scenarios/dambreak.lua" -v t_end=0.6 -v images=0.1 -v out="$out/dambr
 run "$root/scenarios/drop.lua" -v t_end=0.3 -v images=0.05 -v out="$out/drop"
 run "$root/scenarios/double_dambreak.lua" -v t_end=0.6 -v images=0.1 -v out="$out/double"
 run "$root/scenarios/obstacle.lua" -v t_end=0.4 -v images=0.1 -v out="$out/obstacle"
+run "$root/scenarios/wave_flume.lua" -v t_end=5.5 -v images=0.5 -v out="$out/flume"
 
 cp "$out/dambreak/image_00003.png" "$root/docs/images/dambreak.png"   # t = 0.3 s, the README's
 for k in 1 3 6; do cp "$out/dambreak/image_0000$k.png" "$root/docs/gallery/dambreak_$k.png"; done
 for k in 1 2 4; do cp "$out/drop/image_0000$k.png" "$root/docs/gallery/drop_$k.png"; done
 for k in 2 3 5; do cp "$out/double/image_0000$k.png" "$root/docs/gallery/double_dambreak_$k.png"; done
 for k in 2 3 4; do cp "$out/obstacle/image_0000$k.png" "$root/docs/gallery/obstacle_$k.png"; done
+for k in 10 11; do cp "$out/flume/image_000$k.png" "$root/docs/gallery/wave_flume_$k.png"; done
 rm -rf "$out"
 echo "make_gallery.sh: pictures in docs/gallery/ and docs/images/dambreak.png"
