@@ -31,10 +31,7 @@
 -- continues from one (the scene comes from the file, the pipeline from this script, and the
 -- run goes on to t_end).
 package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
-local function flag(value, default)
-  if value == nil then return default end
-  return not (value == false or value == 0 or value == "false")
-end
+local flag = require("flag")
 local solver = var.solver or "pbf"
 assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
 local N = var.particles or (solver == "wcsph" and 8000 or 30000)
@@ -77,7 +74,7 @@ if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, eos = var.eos, density = var.density, fixed_dt = var.fixed_dt,
                            sound_speed = var.sound_speed, courant = var.courant}
 else
-  pbf.fix("pbf", "pbf", {iterations = var.iterations, relaxation = var.relaxation, one_sided = flag(var.one_sided, true),
+  pbf.fix("pbf", "pbf", {iterations = var.iterations, relaxation = var.relaxation, one_sided = flag(var.one_sided, true, "one_sided"),
                          scorr_k = var.scorr_k, error = var.error, max_iterations = var.max_iterations})
   pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity or 0.05})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
@@ -86,7 +83,7 @@ else
                            max_dt = var.max_dt, align = out ~= "" and (var.interval or 0.02) or nil})
   end
 end
-pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true), contact_distance = var.contact,
+pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true, "wall_density"), contact_distance = var.contact,
                          friction = var.friction})
 -- Pictures, movie and ParaView frames on request (share/lua/outputs.lua).
 require("outputs").add(out, {color = "speed", min = 0, max = 2.5, direction = {1, 2.2, -0.9}, zoom = 1.4})

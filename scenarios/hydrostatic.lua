@@ -15,10 +15,7 @@
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local geometry = here .. "geometry/"
-local function flag(value, default)
-  if value == nil then return default end
-  return not (value == false or value == 0 or value == "false")
-end
+local flag = require("flag")
 local N = var.particles or 8000
 local t_end = var.t_end or 2.0
 local H = var.height or 0.4
@@ -38,14 +35,14 @@ if (var.solver or "pbf") == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, density = var.density, fixed_dt = var.fixed_dt}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, error = var.error, max_iterations = var.max_iterations,
-                         epsilon = var.epsilon, relaxation = var.relaxation, one_sided = flag(var.one_sided, true),
+                         epsilon = var.epsilon, relaxation = var.relaxation, one_sided = flag(var.one_sided, true, "one_sided"),
                          scorr_k = var.scorr_k})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 end
 if (var.walls or "box") == "box" then
-  pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true), contact_distance = var.contact})
+  pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true, "wall_density"), contact_distance = var.contact})
 else  -- the same box as a solid container: a primitive, or a mesh file read with Assimp
-  local tank = {fluid = "inside", wall_density = flag(var.wall_density, true), contact_distance = var.contact}
+  local tank = {fluid = "inside", wall_density = flag(var.wall_density, true, "wall_density"), contact_distance = var.contact}
   if var.walls == "mesh" then
     tank.file = geometry .. "unit_box.obj"
     tank.scale = {W, W, 1.5 * H}

@@ -49,7 +49,7 @@ local solver = var.solver or "pbf"
 assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
 local t_end = var.t_end or 2.0
 local out = var.out or "out/spheric"
-local probes = not (var.probes == 0 or var.probes == "0" or var.probes == "false")
+local probes = require("flag")(var.probes, true, "probes")
 local g = 9.81
 
 -- The experiment (spheric_test2_geometry.csv).

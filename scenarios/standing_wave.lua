@@ -56,7 +56,7 @@ else
   pbf.fix("pbf", "pbf", {iterations = var.iterations})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})
 end
-pbf.fix("walls", "box", {contact_distance = var.contact, wall_density = var.wall_density ~= "false" and var.wall_density ~= false})
+pbf.fix("walls", "box", {contact_distance = var.contact, wall_density = require("flag")(var.wall_density, true, "wall_density")})
 if var.out then pbf.fix("frames", "dump/text", {path = var.out .. "/frame_*.txt", interval = 0.02}) end
 
 pbf.compute("left", "gauge", {points = {{0, W / 2, 0}}})

@@ -58,7 +58,7 @@ if solver == "wcsph" then
                            diffusion = var.diffusion or 0, negative_pressure = var.negative_pressure}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, error = var.error, max_iterations = var.max_iterations,
-                         one_sided = not (var.one_sided == 0 or var.one_sided == "false")})
+                         one_sided = require("flag")(var.one_sided, true, "one_sided")})
   if (var.xsph or 1) ~= 0 then pbf.fix("xsph", "xsph", {}) end
 end
 pbf.fix("walls", "box", {})

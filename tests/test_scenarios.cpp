@@ -194,6 +194,20 @@ TEST(WaveFlume, PaddleAndGaugesSameBitsAtOneAndTwoThreads) {
   }
 }
 
+// A yes/no variable (share/lua/flag.lua) takes true/false or 1/0; anything else stops the
+// scenario with a message naming the variable, before the run.
+TEST(ScenarioVariables, AYesNoVariableRefusesAnythingElseByName) {
+  for (const std::string given : {"-v wall_density=maybe", "-v solver=wcsph -v fixed_dt=yes"}) {
+    auto r = run_engine("run " + scenario("dambreak.lua") + " -v particles=1000 -v t_end=0.01 -v out= " + given);
+    EXPECT_NE(r.code, 0) << given;
+    const std::string name = given.substr(given.rfind("-v ") + 3, given.rfind('=') - given.rfind("-v ") - 3);
+    EXPECT_NE(r.output.find("variable '" + name + "' must be true or false"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Timing"), std::string::npos) << "no step should have run: " << r.output;
+  }
+  auto r = run_engine("run " + scenario("dambreak.lua") + " -v particles=1000 -v t_end=0.01 -v out= -v wall_density=0");
+  EXPECT_EQ(r.code, 0) << r.output;
+}
+
 TEST(InitFile, RunsASceneFromTheGeneratorAtItsOutputInterval) {
   // The original study's workflow: write a scene file with share/make_scene.py, run it
   // with the standard pipeline, get one frame per output interval from t = 0 to the end.

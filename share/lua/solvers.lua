@@ -8,20 +8,15 @@
 -- courant, align (s: steps end on multiples of it), fixed_dt (true: no cfl; the script's time
 -- step is used as it is).
 local solvers = {}
-
--- A -v value arrives as a string: "true" and "false" mean the booleans.
-local function boolean(value)
-  if value == "true" then return true elseif value == "false" then return false end
-  return value
-end
+local flag = require("flag")
 
 function solvers.wcsph(opts)
   opts = opts or {}
   pbf.fix("integrator", "leapfrog", {})
   pbf.fix("wcsph", "wcsph", {eos = opts.eos, density = opts.density, sound_speed = opts.sound_speed,
-                             diffusion = opts.diffusion, negative_pressure = boolean(opts.negative_pressure)})
+                             diffusion = opts.diffusion, negative_pressure = flag(opts.negative_pressure, nil, "negative_pressure")})
   pbf.fix("viscosity", "sph_viscosity", {alpha = opts.alpha})
-  local fixed = opts.fixed_dt ~= nil and opts.fixed_dt ~= false and opts.fixed_dt ~= 0 and opts.fixed_dt ~= "false"
+  local fixed = flag(opts.fixed_dt, false, "fixed_dt")
   if not fixed then pbf.fix("cfl", "cfl", {courant = opts.courant, align = opts.align}) end
 end
 
