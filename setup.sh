@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 packages=(g++ cmake make pkg-config liblua5.4-dev libspdlog-dev libfmt-dev libcli11-dev libgtest-dev
-          libbenchmark-dev libstb-dev fonts-dejavu-core libpugixml-dev zlib1g-dev libassimp-dev libopenvdb-dev libhwy-dev ffmpeg
+          libbenchmark-dev libstb-dev fonts-dejavu-core libpugixml-dev zlib1g-dev libassimp-dev libopenvdb-dev libhwy-dev openmpi-bin libopenmpi-dev ffmpeg
           python3 python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do

@@ -34,6 +34,8 @@
 --   interval      seconds between rows of OUT/probes.csv (default 0.001)
 --   error, max_iterations   pbf's accuracy target, the mean compression (default 0.002,
 --                 reached within at most 40 iterations); iterations: a fixed count instead
+--   vorticity, xsph  pbf's vorticity confinement epsilon and XSPH c (the styles' defaults,
+--                 0.05 and 0.01; 0 leaves the style out)
 --   dt            PBF time step (s), default 0.4 h / sqrt(2 g 0.55); with wcsph the largest
 --                 step cfl may take
 --   images, movie, vtk  pictures, a movie, ParaView frames (share/lua/outputs.lua)
@@ -93,8 +95,8 @@ else
   local target = var.iterations == nil and var.error == nil
   pbf.fix("pbf", "pbf", {iterations = var.iterations, error = var.error or (target and 0.002 or nil),
                          max_iterations = var.max_iterations or (target and 40 or nil)})
-  pbf.fix("vorticity", "vorticity", {})
-  pbf.fix("xsph", "xsph", {})
+  if (var.vorticity or 1) ~= 0 then pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity}) end
+  if (var.xsph or 1) ~= 0 then pbf.fix("xsph", "xsph", {c = var.xsph}) end
 end
 pbf.fix("walls", "box", {})                        -- the tank: slip walls, closed at z = 1 m
 pbf.fix("obstacle", "solid", {shape = "box", lo = box_lo, hi = box_hi})   -- fluid outside

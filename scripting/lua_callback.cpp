@@ -17,6 +17,9 @@ class LuaCallback : public Fix {
   ~LuaCallback() override { luaL_unref(L_, LUA_REGISTRYINDEX, ref_); }
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
+  // Every rank runs the script and its callbacks, at the same steps; the computes they read
+  // are collective and give every rank the same values.
+  bool runs_distributed() const override { return true; }
 
   void end_of_step(Simulation& sim) override {
     if (sim.step() % every_ != 0) return;

@@ -11,7 +11,9 @@
 #include <csignal>
 #include <cstdio>
 #include <ctime>
+#include <chrono>
 #include <filesystem>
+#include <thread>
 #include <mutex>
 #include <omp.h>
 #include <spdlog/pattern_formatter.h>
@@ -20,6 +22,7 @@
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/core/vectors.hpp"
 #include "engine/core/interrupt.hpp"
 #include "engine/core/names.hpp"
@@ -124,6 +127,27 @@ std::string command_line(int argc, char** argv) {
   return line;
 }
 
+// A distributed run that failed on some rank: one message, then every rank stops (none waits
+// for a partner that is gone). An error every rank meets (a script's) is rank 0's to tell;
+// the others wait a moment first, so that rank 0 tells it and ends them all. One that only
+// another rank meets (a particle of its own that blew up) that rank tells, naming itself.
+int fail(const std::string& message, int code) {
+  if (!pbf::comm::distributed()) {
+    report(message);
+    return code;
+  }
+  if (pbf::comm::root()) {
+    report(message);
+  } else {
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    std::fflush(stdout);
+    std::fprintf(stderr, "rank %d: %s\n", pbf::comm::rank(), message.c_str());
+  }
+  std::fflush(stderr);
+  pbf::log_file::close();
+  pbf::comm::abort(code);
+}
+
 int run_script(const std::string& file, const std::vector<std::pair<std::string, std::string>>& variables) {
   try {
     pbf::Simulation sim;
@@ -133,11 +157,9 @@ int run_script(const std::string& file, const std::vector<std::pair<std::string,
     for (const auto& name : script.unread_variables())
       spdlog::warn("variable '{}' given with -v was never read by {}", name, file);
   } catch (const pbf::Interrupted& e) {
-    report(e.what());
-    return 130;  // the shell's code for a process ended by SIGINT
+    return fail(e.what(), 130);  // the shell's code for a process ended by SIGINT
   } catch (const std::exception& e) {
-    report(e.what());
-    return 1;
+    return fail(e.what(), 1);
   }
   return 0;
 }
@@ -244,6 +266,12 @@ int main(int argc, char** argv) {
   if (log_path != "none" && resolved(log_path) == resolved(file))
     return command_line_error(fmt::format("the log file '{}' is the script itself; choose another with --log", log_path));
 
+  // Under an MPI launcher: the ranks of a distributed run. Rank 0 alone prints and keeps the log.
+  pbf::comm::start(argc, argv);
+  if (!pbf::comm::root()) {
+    level = "off";
+    log_path = "none";
+  }
   // A write past the file-size limit (ulimit -f, a full quota) would kill the process with
   // SIGXFSZ; ignored, the write fails (EFBIG) and the engine reports it, naming the file.
   std::signal(SIGXFSZ, SIG_IGN);
@@ -259,9 +287,14 @@ int main(int argc, char** argv) {
                                        pbf::vectors_in_use()));
   }
   omp_set_num_threads(threads);
-  spdlog::info("pbfengine {} on {} OpenMP thread{} (this machine runs {} hardware threads)", PBF_VERSION, threads,
-               threads == 1 ? "" : "s", omp_get_num_procs());
+  if (pbf::comm::distributed())
+    spdlog::info("pbfengine {} on {} MPI ranks of {} OpenMP thread{} each (this machine runs {} hardware threads)",
+                 PBF_VERSION, pbf::comm::ranks(), threads, threads == 1 ? "" : "s", omp_get_num_procs());
+  else
+    spdlog::info("pbfengine {} on {} OpenMP thread{} (this machine runs {} hardware threads)", PBF_VERSION, threads,
+                 threads == 1 ? "" : "s", omp_get_num_procs());
   const int code = run_script(file, variables);
+  pbf::comm::stop();
   if (!pbf::log_file::close())
     std::fprintf(stderr, "warning: writing the log file '%s' failed; it is incomplete\n", log_path.c_str());
   return code;

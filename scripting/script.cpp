@@ -8,6 +8,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "engine/distributed/comm.hpp"
 #include "engine/core/names.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/registry/style_registry.hpp"
@@ -212,8 +213,16 @@ int l_time(lua_State* L) {
   lua_pushnumber(L, state(L).sim.time());
   return 1;
 }
-int l_count(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(state(L).sim.particles().size()));
+int l_count(lua_State* L) {  // every rank's particles (collective in a distributed run)
+  lua_pushinteger(L, static_cast<lua_Integer>(state(L).sim.particles().global_size()));
+  return 1;
+}
+int l_rank(lua_State* L) {
+  lua_pushinteger(L, comm::rank());
+  return 1;
+}
+int l_ranks(lua_State* L) {
+  lua_pushinteger(L, comm::ranks());
   return 1;
 }
 
@@ -239,8 +248,10 @@ int l_timing(lua_State* L) {
   return 1;
 }
 
-// Lua's print, also copied into the log file.
-int l_print(lua_State* L) {
+// Lua's print, also copied into the log file; in a distributed run, rank 0's only (every rank
+// runs the script). pbf.print_all prints on every rank, naming it.
+int print_line(lua_State* L, bool every_rank) {
+  if (!every_rank && !comm::root()) return 0;
   const int n = lua_gettop(L);
   luaL_Buffer line;
   luaL_buffinit(L, &line);
@@ -251,6 +262,10 @@ int l_print(lua_State* L) {
   }
   luaL_addchar(&line, '\n');
   luaL_pushresult(&line);
+  if (every_rank && comm::distributed()) {
+    lua_pushfstring(L, "rank %d: %s", comm::rank(), lua_tostring(L, -1));
+    lua_remove(L, -2);
+  }
   std::size_t size = 0;
   const char* text = lua_tolstring(L, -1, &size);
   std::fwrite(text, 1, size, stdout);
@@ -258,6 +273,8 @@ int l_print(lua_State* L) {
   log_file::write({text, size});
   return 0;
 }
+int l_print(lua_State* L) { return print_line(L, false); }
+int l_print_all(lua_State* L) { return print_line(L, true); }
 
 // var: reads go through __index so the engine can warn about variables never read.
 int l_var_index(lua_State* L) {
@@ -303,6 +320,9 @@ Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}, std:
       {"step", lua::guarded<l_step>},
       {"time", lua::guarded<l_time>},
       {"count", lua::guarded<l_count>},
+      {"rank", lua::guarded<l_rank>},
+      {"ranks", lua::guarded<l_ranks>},
+      {"print_all", lua::guarded<l_print_all>},
       {"timing", lua::guarded<l_timing>}};
   functions.insert(functions.end(), std::begin(pipeline), std::end(pipeline));
   functions.push_back({nullptr, nullptr});

@@ -198,3 +198,65 @@ TEST(NeighborGrid, CellCountIsCappedInAHugeBox) {
   expect_matches_brute_force(p, d, 0.01, 2);
   omp_set_num_threads(1);
 }
+
+// What a rank of a distributed run does (engine/distributed/decomposition.hpp): it bins its
+// own particles (those of a box of cells) and the ghosts within one cell of them, over just
+// those cells of the whole domain's grid, and lists its own particles' neighbours. The lists,
+// as ids, must be those of the whole set: same neighbours, same order. Particles outside the
+// domain (clamped into its edge cells) are included.
+TEST(NeighborGrid, ABoxOfCellsListsAsTheWholeGridDoes) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.02, 1.02);
+  Cloud all;
+  std::vector<std::int64_t> all_ids;
+  for (int i = 0; i < 6000; ++i) {
+    all.add(u(rng), u(rng), u(rng));
+    all_ids.push_back(5999 - i);  // ids not in memory order
+  }
+  const double h = 0.07;
+  const GridGeometry g = GridGeometry::of(unit_box(), h, all.x.size());
+  NeighborGrid whole;
+  whole.bin(all.x.data(), all.y.data(), all.z.data(), all.x.size(), g, CellRange::all(g));
+  whole.order_cells_by(all_ids.data());
+  whole.build_lists(all.x.data(), all.y.data(), all.z.data(), h);
+  // Boxes that touch the domain's faces and boxes inside it.
+  const CellRange boxes[] = {{{0, 0, 0}, {5, 15, 15}}, {{4, 3, 2}, {9, 8, 7}}, {{10, 0, 7}, {g.dims[0], 6, g.dims[2]}}};
+  for (const CellRange& box : boxes) {
+    const CellRange reach{{std::max(0L, box.lo[0] - 1), std::max(0L, box.lo[1] - 1), std::max(0L, box.lo[2] - 1)},
+                          {std::min(g.dims[0], box.hi[0] + 1), std::min(g.dims[1], box.hi[1] + 1),
+                           std::min(g.dims[2], box.hi[2] + 1)}};
+    Cloud local;
+    std::vector<std::int64_t> ids;
+    std::vector<std::size_t> whole_index;
+    for (int pass : {0, 1})  // own particles first, then the ghosts
+      for (std::size_t i = 0; i < all.x.size(); ++i) {
+        const long c[3] = {g.cell_along(0, all.x[i]), g.cell_along(1, all.y[i]), g.cell_along(2, all.z[i])};
+        if (pass == 0 ? !box.contains(c) : (box.contains(c) || !reach.contains(c))) continue;
+        local.add(all.x[i], all.y[i], all.z[i]);
+        ids.push_back(all_ids[i]);
+        whole_index.push_back(i);
+      }
+    std::size_t own = 0;
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const std::size_t i = whole_index[k];
+      const long c[3] = {g.cell_along(0, all.x[i]), g.cell_along(1, all.y[i]), g.cell_along(2, all.z[i])};
+      own += box.contains(c);
+    }
+    NeighborGrid part;
+    part.bin(local.x.data(), local.y.data(), local.z.data(), local.x.size(), g, reach);
+    part.order_cells_by(ids.data());
+    part.build_lists(local.x.data(), local.y.data(), local.z.data(), h, own);
+    ASSERT_EQ(part.particle_count(), own);
+    ASSERT_GT(own, 50u);
+    std::size_t pairs = 0;
+    for (std::size_t k = 0; k < own; ++k) {
+      const std::size_t i = whole_index[k];
+      std::vector<std::int64_t> expected, got;
+      for (std::uint32_t m = 0; m < whole.count(i); ++m) expected.push_back(all_ids[whole.neighbors(i)[m]]);
+      for (std::uint32_t m = 0; m < part.count(k); ++m) got.push_back(ids[part.neighbors(k)[m]]);
+      ASSERT_EQ(got, expected) << "particle id " << ids[k];
+      pairs += got.size();
+    }
+    EXPECT_GT(pairs, own);
+  }
+}

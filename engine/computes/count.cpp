@@ -10,8 +10,9 @@ class Count : public Compute {
  public:
   Count(const std::string& id, const Params&) : Compute(id, "count") {}
   std::vector<std::string> names() const override { return {"value"}; }
+  bool runs_distributed() const override { return true; }  // every rank's
   void evaluate(Simulation& sim, std::vector<double>& values) override {
-    values = {static_cast<double>(sim.particles().size())};
+    values = {static_cast<double>(sim.global_count())};
   }
 };
 

@@ -5,6 +5,7 @@
 
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/core/simulation.hpp"
 
 namespace pbf {
@@ -15,17 +16,20 @@ class DensityError : public Compute {
  public:
   DensityError(const std::string& id, const Params&) : Compute(id, "density_error") {}
   std::vector<std::string> names() const override { return {"avg", "max", "compression"}; }
+  bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const real* rho = sim.solver_density();
     const double inv = 1.0 / sim.rest_density();
     const std::size_t n = sim.particles().size();
-    const double avg = deterministic_sum(n, [&](std::size_t i) { return rho[i] * inv - 1; }) / double(n);
+    const double all = double(sim.global_count());
+    const bool ranks = sim.particles().distributed();
+    const double avg = deterministic_sum(n, [&](std::size_t i) { return rho[i] * inv - 1; }, ranks) / all;
     const double compression =
-        deterministic_sum(n, [&](std::size_t i) { return std::max(rho[i] * inv - 1, 0.0); }) / double(n);
+        deterministic_sum(n, [&](std::size_t i) { return std::max(rho[i] * inv - 1, 0.0); }, ranks) / all;
     double most = -1;
 #pragma omp parallel for reduction(max : most)
     for (std::size_t i = 0; i < n; ++i) most = std::max(most, rho[i] * inv - 1);
-    values = {avg, most, compression};
+    values = {avg, ranks ? comm::max(most) : most, compression};
   }
 };
 

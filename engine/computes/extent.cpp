@@ -4,6 +4,7 @@
 
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -13,6 +14,7 @@ class Extent : public Compute {
  public:
   Extent(const std::string& id, const Params&) : Compute(id, "extent") {}
   std::vector<std::string> names() const override { return {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}; }
+  bool runs_distributed() const override { return true; }  // over every rank's
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
     const real* c[3] = {P.x(), P.y(), P.z()};
@@ -27,6 +29,12 @@ class Extent : public Compute {
       }
       values.push_back(lo);
       values.push_back(hi);
+    }
+    if (P.distributed()) {
+      double lows[3] = {values[0], values[2], values[4]}, highs[3] = {values[1], values[3], values[5]};
+      comm::min(lows);
+      comm::max(highs);
+      values = {lows[0], highs[0], lows[1], highs[1], lows[2], highs[2]};
     }
   }
 };

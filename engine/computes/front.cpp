@@ -6,6 +6,7 @@
 #include "engine/core/error.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/selection.hpp"
 
 namespace pbf {
 
@@ -17,13 +18,13 @@ class Front : public Compute {
     axis_ = p.string("axis")[0] - 'x';
   }
   std::vector<std::string> names() const override { return {"value"}; }
+  bool runs_distributed() const override { return true; }  // the percentile of every rank's particles
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
     const real* c = axis_ == 0 ? P.x() : (axis_ == 1 ? P.y() : P.z());
     std::vector<real> coords(c, c + P.size());
-    const auto k = static_cast<std::ptrdiff_t>(std::floor(percentile_ / 100 * double(coords.size() - 1) + 0.5));
-    std::nth_element(coords.begin(), coords.begin() + k, coords.end());
-    values = {double(coords[static_cast<std::size_t>(k)])};
+    const auto k = static_cast<std::size_t>(std::floor(percentile_ / 100 * double(sim.global_count() - 1) + 0.5));
+    values = {double(nth_smallest(coords, k, P.distributed()))};
   }
 
  private:

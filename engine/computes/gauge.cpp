@@ -17,7 +17,8 @@
 // below 1/2 on the whole line (dry). A lone droplet has f = V W(0) ~ 0.2 at h = 2s, so spray
 // above the surface does not count; a thick enough sheet does.
 //
-// Each sum runs serially in PointQuery's fixed order: the same bits at any thread count.
+// Each sum runs serially in PointQuery's fixed order: the same bits at any thread count, and on
+// any number of ranks (each sample is measured by the rank whose box holds it).
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -25,6 +26,7 @@
 #include "engine/core/simulation.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/sph/point_query.hpp"
 
 namespace pbf {
@@ -39,56 +41,80 @@ class Gauge : public Compute {
   }
 
   std::vector<std::string> names() const override { return names_; }
+  bool runs_distributed() const override { return true; }  // each sample measured by the rank whose box holds it
 
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     check_points_inside(points_, sim.domain(), fmt::format("compute '{}' ({})", id(), style()));
     const auto& P = sim.particles();
     values.assign(points_.size(), 0.0);
-    if (P.size() == 0) return;  // all dry (and no mean mass to take a spacing from)
+    if (sim.global_count() == 0) return;  // all dry (and no mean mass to take a spacing from)
     const Kernels& K = sim.kernels();
-    const real* m = P.mass();
     const double inv_rho0 = 1 / sim.rest_density(), top = sim.domain().hi[2];
     const double spacing = lattice_spacing(P.mean_mass(), K, sim.rest_density());
-    const PointQuery query(P.x(), P.y(), P.z(), P.size(), sim.domain(), sim.kernel_radius());
+    const NeighborGrid& cells = sim.point_cells();  // may rebuild the ghosts: pointers after it
+    const PointQuery query(cells, P.x(), P.y(), P.z(), sim.kernel_radius());
+    const real* m = P.mass();
     const auto& walls = sim.density_boundaries();
-    const std::size_t n = points_.size();
+    // Samples z0 + i dz along each line, i = 0..count, the last exactly at the top, at most a
+    // quarter spacing apart; the fluid fraction at each, by the rank that measures there.
+    std::vector<std::size_t> first(points_.size() + 1, 0);
+    for (std::size_t k = 0; k < points_.size(); ++k)
+      first[k + 1] = first[k] + samples(points_[k][2], top, spacing) + 1;
+    std::vector<double> f(first.back(), 0.0);
 #pragma omp parallel for schedule(dynamic)
-    for (std::size_t k = 0; k < n; ++k) {
-      const double x = points_[k][0], y = points_[k][1], z0 = points_[k][2];
-      auto fraction = [&](double z) {
-        double f = 0;
-        query.for_each_near(x, y, z, [&](std::uint32_t j, double, double, double, double r2) {
-          f += double(m[j]) * inv_rho0 * K.W(real(r2));
-        });
-        if (walls.empty()) return f;
+    for (std::size_t s = 0; s < f.size(); ++s) {
+      const std::size_t k = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), s) - first.begin()) - 1;
+      const double x = points_[k][0], y = points_[k][1];
+      const double z = sample_z(points_[k][2], top, spacing, s - first[k]);
+      if (!sim.measures_at(x, y, z)) continue;  // another rank's
+      double sum = 0;
+      query.for_each_near(x, y, z, [&](std::uint32_t j, double, double, double, double r2) {
+        sum += double(m[j]) * inv_rho0 * K.W(real(r2));
+      });
+      if (!walls.empty()) {
         real wall = 0, grad[3] = {0, 0, 0};
-        for (const DensityBoundary* b : walls) b->add_density(sim, real(x), real(y), real(z), DensityBoundary::kNoParticle, wall, grad);
+        for (const DensityBoundary* b : walls)
+          b->add_density(sim, real(x), real(y), real(z), DensityBoundary::kNoParticle, wall, grad);
         const double room = 1 - wall * inv_rho0;  // the kernel's share on the fluid side
-        return room < 0.1 ? 0.0 : f / room;
-      };
-      // Samples z0 + i dz, i = 0..count, the last exactly at the top, at most a quarter spacing apart.
-      const auto count = static_cast<long>(std::ceil((top - z0) / (0.25 * spacing)));
-      if (count <= 0) continue;  // a foot on the top face: no line
-      const double dz = (top - z0) / static_cast<double>(count);
-      double above = fraction(top);
+        sum = room < 0.1 ? 0.0 : sum / room;
+      }
+      f[s] = sum;
+    }
+    if (P.distributed()) comm::sum(std::span<double>(f));  // each sample from the one rank that measured it
+    for (std::size_t k = 0; k < points_.size(); ++k) {
+      const double z0 = points_[k][2];
+      const std::size_t count = first[k + 1] - first[k] - 1;
+      if (count == 0) continue;  // a foot on the top face: no line
+      // From the top down: the first sample that reaches 1/2 is the highest one.
+      double above = f[first[k] + count];
       if (above >= 0.5) {  // full to the top
         values[k] = top - z0;
         continue;
       }
-      // From the top down: empty cells above the fluid cost little, and the first sample
-      // that reaches 1/2 is the highest one.
-      for (long i = count - 1; i >= 0; --i) {
-        const double z = z0 + static_cast<double>(i) * dz, f = fraction(z);
-        if (f >= 0.5) {
-          values[k] = z + dz * (f - 0.5) / (f - above) - z0;
+      const double dz = (top - z0) / static_cast<double>(count);
+      for (std::size_t i = count; i-- > 0;) {
+        const double z = sample_z(z0, top, spacing, i), fi = f[first[k] + i];
+        if (fi >= 0.5) {
+          values[k] = z + dz * (fi - 0.5) / (fi - above) - z0;
           break;
         }
-        above = f;
+        above = fi;
       }
     }
   }
 
  private:
+  // The samples along a line from z0 to the top: count + 1 of them (none above a foot on the top).
+  static std::size_t samples(double z0, double top, double spacing) {
+    const double count = std::ceil((top - z0) / (0.25 * spacing));
+    return count > 0 ? static_cast<std::size_t>(count) : 0;
+  }
+  static double sample_z(double z0, double top, double spacing, std::size_t i) {
+    const std::size_t count = samples(z0, top, spacing);
+    if (i == count) return top;
+    return z0 + static_cast<double>(i) * ((top - z0) / static_cast<double>(count));
+  }
+
   Points points_;
   std::vector<std::string> names_;
 };

@@ -14,6 +14,7 @@ class Iterations : public Compute {
  public:
   Iterations(const std::string& id, const Params&) : Compute(id, "iterations") {}
   std::vector<std::string> names() const override { return {"last", "avg", "error"}; }
+  bool runs_distributed() const override { return true; }  // the solver's report is the same on every rank
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     auto& report = sim.solver_report();
     const std::int64_t steps = report.steps - steps_seen_, sum = report.iteration_sum - sum_seen_;

@@ -11,12 +11,13 @@ class KineticEnergy : public Compute {
  public:
   KineticEnergy(const std::string& id, const Params&) : Compute(id, "kinetic_energy") {}
   std::vector<std::string> names() const override { return {"value"}; }
+  bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
     values = {deterministic_sum(P.size(), [&](std::size_t i) {
       const double vx = P.vx()[i], vy = P.vy()[i], vz = P.vz()[i];
       return 0.5 * P.mass()[i] * (vx * vx + vy * vy + vz * vz);
-    })};
+    }, P.distributed())};
   }
 };
 

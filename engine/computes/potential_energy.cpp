@@ -14,11 +14,12 @@ class PotentialEnergy : public Compute {
  public:
   PotentialEnergy(const std::string& id, const Params& p) : Compute(id, "potential_energy"), g_(p.vec3("acceleration")) {}
   std::vector<std::string> names() const override { return {"value"}; }
+  bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
     values = {deterministic_sum(P.size(), [&](std::size_t i) {
       return -double(P.mass()[i]) * (g_[0] * P.x()[i] + g_[1] * P.y()[i] + g_[2] * P.z()[i]);
-    })};
+    }, P.distributed())};
   }
 
  private:

@@ -20,6 +20,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/registry/builtin_styles.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/sph/point_query.hpp"
 
 namespace pbf {
@@ -45,18 +46,23 @@ class Probe : public Compute {
   }
 
   std::vector<std::string> names() const override { return names_; }
+  bool runs_distributed() const override { return true; }  // each point measured by the rank whose box holds it
   bool reads_pressure() const { return field_ == "pressure"; }
 
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     check_points_inside(points_, sim.domain(), fmt::format("compute '{}' ({})", id(), style()));
     const auto& P = sim.particles();
+    // The density first: its sums may rebuild the ghosts, which moves every array; the point
+    // cells then find them current. Pointers into the particles only after both.
+    const real* density = field_ == "density" ? sim.solver_density() : nullptr;
+    const NeighborGrid& cells = sim.point_cells();
     const real* a[3] = {nullptr, nullptr, nullptr};
     int components = 1;
     if (field_ == "velocity") {
       a[0] = P.vx(), a[1] = P.vy(), a[2] = P.vz();
       components = 3;
     } else if (field_ == "density") {
-      a[0] = sim.solver_density();
+      a[0] = density;
     } else {
       const auto pressure = P.find("pressure");
       if (!pressure)
@@ -67,11 +73,12 @@ class Probe : public Compute {
     }
     const Kernels& K = sim.kernels();
     const real* m = P.mass();
-    const PointQuery query(P.x(), P.y(), P.z(), P.size(), sim.domain(), sim.kernel_radius());
+    const PointQuery query(cells, P.x(), P.y(), P.z(), sim.kernel_radius());
     const std::size_t n = points_.size();
     values.assign(n * static_cast<std::size_t>(components), 0.0);
 #pragma omp parallel for schedule(dynamic)
     for (std::size_t k = 0; k < n; ++k) {
+      if (!sim.measures_at(points_[k][0], points_[k][1], points_[k][2])) continue;  // another rank's
       double weight = 0, sum[3] = {0, 0, 0};
       query.for_each_near(points_[k][0], points_[k][1], points_[k][2],
                           [&](std::uint32_t j, double, double, double, double r2) {
@@ -82,6 +89,7 @@ class Probe : public Compute {
       if (weight > 0)  // else dry: 0
         for (int c = 0; c < components; ++c) values[k * components + c] = sum[c] / weight;
     }
+    if (P.distributed()) comm::sum(std::span<double>(values));  // each value from the one rank that measured it
   }
 
  private:

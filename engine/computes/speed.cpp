@@ -4,6 +4,7 @@
 
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/core/simulation.hpp"
 
 namespace pbf {
@@ -14,6 +15,7 @@ class Speed : public Compute {
  public:
   Speed(const std::string& id, const Params&) : Compute(id, "speed") {}
   std::vector<std::string> names() const override { return {"max", "avg"}; }
+  bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
     auto speed = [&](std::size_t i) {
@@ -23,7 +25,9 @@ class Speed : public Compute {
     double most = 0;
 #pragma omp parallel for reduction(max : most)
     for (std::size_t i = 0; i < P.size(); ++i) most = std::max(most, speed(i));
-    values = {most, deterministic_sum(P.size(), speed) / double(P.size())};
+    const bool ranks = P.distributed();
+    values = {ranks ? comm::max(most) : most,
+              deterministic_sum(P.size(), speed, ranks) / double(sim.global_count())};
   }
 };
 

@@ -22,6 +22,8 @@ class Compute {
   virtual void evaluate(Simulation& sim, std::vector<double>& values) = 0;
 
   virtual bool per_particle() const { return false; }
+  // Whether it measures over every rank's particles in a distributed run (else refused there).
+  virtual bool runs_distributed() const { return false; }
   // One value per particle, indexed by particle id (the input order).
   virtual void evaluate_per_particle(Simulation&, std::vector<double>& by_id) { by_id.clear(); }
 

@@ -58,6 +58,13 @@ class ExactSum {
   // back with set_words gives their exact total.
   std::array<std::int64_t, kWords> words() const;
   void set_words(const std::array<std::int64_t, kWords>& words);
+  // The counts of NaNs, +infinities and -infinities added, reduced the same way.
+  std::array<std::uint32_t, 3> specials() const { return {nans_, positive_infinities_, negative_infinities_}; }
+  void set_specials(const std::array<std::uint32_t, 3>& counts) {
+    nans_ = counts[0];
+    positive_infinities_ = counts[1];
+    negative_infinities_ = counts[2];
+  }
 
  private:
   // A word holds digits below 2^32: 2^30 additions of a digit each stay far inside an int64.

@@ -56,6 +56,9 @@ class Fix {
   virtual const char* exclusive_job() const { return nullptr; }
   // Walls that add to the density the solver sees (nullptr: none).
   virtual DensityBoundary* density_boundary() { return nullptr; }
+  // Whether this style runs on several MPI ranks (its passes refresh the ghosts they read,
+  // its sums are over every rank, its output comes from one); others are refused there.
+  virtual bool runs_distributed() const { return false; }
   // A solid the outputs draw (nullptr: none).
   virtual const SolidBody* solid_body() const { return nullptr; }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Ctrl-C during a run. While an InterruptWatch exists, the first SIGINT only sets a flag:
 // the run loop finishes the step, writes a restart and stops cleanly. The handler then
-// restores the default action, so a second Ctrl-C ends the process at once.
+// restores the default action, so a second Ctrl-C ends the process at once. A distributed run
+// takes SIGTERM the same way, and requested() is then collective.
 #include <cstdint>
 #include <string>
 

@@ -10,12 +10,14 @@
 #include <vector>
 
 #include "engine/core/exact_sum.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
-// Sums term(i) for i in [0, n); Term returns double.
+// Sums term(i) for i in [0, n); Term returns double. across_ranks: and over every rank's
+// terms (a collective call), as one exact sum.
 template <class Term>
-double deterministic_sum(std::size_t n, Term&& term) {
+double deterministic_sum(std::size_t n, Term&& term, bool across_ranks = false) {
   // Kept between calls by the thread that takes the sum (outside parallel regions), so that a
   // step allocates nothing; one accumulator per thread of the loop.
   static thread_local std::vector<ExactSum> kept;
@@ -29,6 +31,7 @@ double deterministic_sum(std::size_t n, Term&& term) {
   }
   ExactSum total;
   for (const ExactSum& p : kept) total.merge(p);
+  if (across_ranks) comm::sum(total);
   return total.value();
 }
 

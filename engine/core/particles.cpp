@@ -6,6 +6,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -16,15 +17,68 @@ Particles::Particles() {
 }
 
 void Particles::add(const real position[3], const real velocity[3], real mass) {
+  if (ghosts_) throw Error("Particles::add with ghosts present");
   for (int c = 0; c < 3; ++c) fields_[kPosition].data[c].push_back(position[c]);
   for (int c = 0; c < 3; ++c) fields_[kVelocity].data[c].push_back(velocity[c]);
   fields_[kMass].data[0].push_back(mass);
   for (std::size_t f = kMass + 1; f < fields_.size(); ++f)
     for (auto& component : fields_[f].data) component.push_back(0);  // none for a freed field
-  ids_.push_back(static_cast<std::int64_t>(ids_.size()));
+  ids_.push_back(next_id_++);
+  if (distributed_) ++replicated_;
+}
+
+std::size_t Particles::global_size() const {
+  if (!distributed_) return size();
+  const std::int64_t own = static_cast<std::int64_t>(size() - replicated_);
+  return static_cast<std::size_t>(comm::sum(own)) + replicated_;
+}
+
+void Particles::resize_all(std::size_t n) {
+  for (Field& field : fields_)
+    if (field.live)
+      for (auto& component : field.data) component.resize(n, real(0));
+  ids_.resize(n);
+}
+
+void Particles::append(std::span<const std::int64_t> ids) {
+  if (ghosts_) throw Error("Particles::append with ghosts present");
+  const std::size_t first = ids_.size();
+  resize_all(first + ids.size());
+  std::copy(ids.begin(), ids.end(), ids_.begin() + static_cast<std::ptrdiff_t>(first));
+}
+
+std::size_t Particles::add_ghosts(std::span<const std::int64_t> ids) {
+  const std::size_t first = ids_.size();
+  resize_all(first + ids.size());
+  std::copy(ids.begin(), ids.end(), ids_.begin() + static_cast<std::ptrdiff_t>(first));
+  ghosts_ += ids.size();
+  return first;
+}
+
+void Particles::drop_ghosts() {
+  resize_all(size());
+  ghosts_ = 0;
+}
+
+void Particles::erase(const std::vector<char>& drop) {
+  if (ghosts_) throw Error("Particles::erase with ghosts present");
+  const std::size_t n = size();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (drop[i]) continue;
+    if (kept != i) {
+      for (Field& field : fields_)
+        for (auto& component : field.data)
+          if (!component.empty()) component[kept] = component[i];
+      ids_[kept] = ids_[i];
+    }
+    ++kept;
+  }
+  resize_all(kept);
 }
 
 std::size_t Particles::remove(const std::vector<char>& drop) {
+  if (ghosts_ || distributed_) throw Error("Particles::remove: only before the particles are distributed");
   const std::size_t n = size();
   std::vector<std::uint32_t> kept;
   kept.reserve(n);
@@ -45,11 +99,12 @@ std::size_t Particles::remove(const std::vector<char>& drop) {
   std::sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return old_ids[a] < old_ids[b]; });
   ids_.assign(kept.size(), 0);
   for (std::size_t rank = 0; rank < by_id.size(); ++rank) ids_[by_id[rank]] = static_cast<std::int64_t>(rank);
+  next_id_ = static_cast<std::int64_t>(kept.size());
   return n - kept.size();
 }
 
 void Particles::fill(Field& field) const {
-  field.data.assign(static_cast<std::size_t>(field.spec.components), std::vector<real>(size(), real(0)));
+  field.data.assign(static_cast<std::size_t>(field.spec.components), std::vector<real>(ids_.size(), real(0)));
 }
 
 FieldId Particles::declare(const FieldSpec& spec) {
@@ -106,7 +161,8 @@ void Particles::free_undeclared() {
 
 double Particles::mean_mass() const {
   const real* m = mass();
-  return deterministic_sum(size(), [&](std::size_t i) { return double(m[i]); }) / static_cast<double>(size());
+  return deterministic_sum(size(), [&](std::size_t i) { return double(m[i]); }, distributed_) /
+         static_cast<double>(global_size());
 }
 
 void Particles::reset(std::vector<std::int64_t> ids) {
@@ -116,12 +172,15 @@ void Particles::reset(std::vector<std::int64_t> ids) {
       throw Error(fmt::format("particle ids must be a permutation of 0..{}; found {}", ids.size() - 1, id));
     seen[static_cast<std::size_t>(id)] = 1;
   }
+  ghosts_ = 0;
   ids_ = std::move(ids);
+  next_id_ = static_cast<std::int64_t>(ids_.size());
   for (auto& field : fields_)
     if (field.live) fill(field);
 }
 
 void Particles::permute(std::span<const std::uint32_t> order, real* scratch) {
+  if (ghosts_) throw Error("Particles::permute with ghosts present");
   const std::size_t n = order.size();
   std::vector<real> own;
   if (!scratch) {
@@ -144,6 +203,7 @@ void Particles::permute(std::span<const std::uint32_t> order, real* scratch) {
 }
 
 std::vector<std::uint32_t> Particles::index_of_id() const {
+  if (distributed_) throw Error("Particles::index_of_id: the particles are distributed among ranks");
   std::vector<std::uint32_t> index(size());
   for (std::size_t i = 0; i < size(); ++i) index[static_cast<std::size_t>(ids_[i])] = static_cast<std::uint32_t>(i);
   return index;

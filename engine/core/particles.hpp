@@ -38,10 +38,39 @@ class Particles {
 
   Particles();
 
-  std::size_t size() const { return ids_.size(); }
+  // The particles this process owns (all of them, unless the run is distributed).
+  std::size_t size() const { return ids_.size() - ghosts_; }
+  // With the ghosts: copies of other ranks' particles near this rank's, after its own in every
+  // array, which the pair loops read as neighbours (engine/distributed/decomposition.hpp).
+  std::size_t size_with_ghosts() const { return ids_.size(); }
+  std::size_t ghosts() const { return ghosts_; }
 
   // Appends one particle; its id is its creation index (the input order).
   void add(const real position[3], const real velocity[3], real mass);
+
+  // A distributed run: each rank holds the particles in its part of the domain (the
+  // decomposition moves them); the ids stay those of the whole set. The particles of all
+  // ranks together (a collective call when distributed).
+  bool distributed() const { return distributed_; }
+  void set_distributed(bool distributed) {
+    distributed_ = distributed;
+    replicated_ = 0;
+  }
+  // Particles the script added since they were distributed (the last ones): every rank added
+  // the same, until the next run's start shares them out.
+  std::size_t replicated() const { return replicated_; }
+  std::size_t global_size() const;
+  // The id the next particle added takes: the count of particles ever created on all ranks.
+  std::int64_t next_id() const { return next_id_; }
+  void set_next_id(std::int64_t id) { next_id_ = id; }
+  // Zeroed particles with these ids after this rank's own (no ghosts may be there).
+  void append(std::span<const std::int64_t> ids);
+  // Removes the particles whose `drop` entry is non-zero, keeping the others' order and ids.
+  void erase(const std::vector<char>& drop);
+  // Zeroed ghosts with these ids after those there are; returns the index of the first.
+  std::size_t add_ghosts(std::span<const std::int64_t> ids);
+  // Removes every ghost (their arrays keep their memory for the next step's).
+  void drop_ghosts();
 
   // Declares a field, zero-filled when new; the same name (with the same component count)
   // gives the same id. Declaring marks the field as used in this declaration round.
@@ -58,7 +87,7 @@ class Particles {
   void begin_declarations();
   void free_undeclared();
 
-  // The mean particle mass (a deterministic sum: the same bits at any thread count).
+  // The mean particle mass (a deterministic sum: the same bits at any thread and rank count).
   double mean_mass() const;
 
   real* data(FieldId field, int component = 0) { return fields_[field].data[component].data(); }
@@ -105,6 +134,10 @@ class Particles {
   void fill(Field& field) const;  // zeroed arrays for every particle
   std::vector<Field> fields_;
   std::vector<std::int64_t> ids_;
+  std::size_t ghosts_ = 0, replicated_ = 0;
+  std::int64_t next_id_ = 0;
+  bool distributed_ = false;
+  void resize_all(std::size_t n);  // every live field and the ids
   // permute()'s buffer for the ids, kept so that reordering allocates nothing.
   std::vector<std::int64_t> id_scratch_;
 };

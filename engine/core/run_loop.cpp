@@ -12,6 +12,7 @@
 #include "engine/io/restart.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/sph/separate_coincident.hpp"
 
 namespace pbf {
@@ -36,6 +37,7 @@ class RunLoop {
   void prepare();
   void check_start_state() const;
   void check_pipeline() const;
+  void distribute();
   void step();
   void run_stage(Stage stage, int iteration = 0);
   void call(Stage stage, Fix& fix, int iteration);
@@ -50,7 +52,7 @@ class RunLoop {
   std::array<std::vector<Hook>, kStageCount> hooks_;
   int iterations_ = 1;
   bool neighbors_ = false;
-  std::size_t row_reorder_ = 0, row_binning_ = 0, row_lists_ = 0, row_checks_ = 0, row_thermo_ = 0;
+  std::size_t row_reorder_ = 0, row_binning_ = 0, row_lists_ = 0, row_checks_ = 0, row_thermo_ = 0, row_migrate_ = 0, row_ghosts_ = 0;
   double neighbor_mean_sum_ = 0;
   long long neighbor_builds_ = 0;
   double full_neighborhood_ = 0;  // particles within h of one at rest density
@@ -82,6 +84,7 @@ void RunLoop::prepare() {
   if (sim_.step_ == 0 &&
       std::any_of(sim_.fixes_.begin(), sim_.fixes_.end(), [](const auto& f) { return f->needs_neighbors(); }))
     separate_coincident(sim_);
+  distribute();
   // Every fix declares the fields it uses; the outputs start last, after the fields no fix
   // declared are freed, so that they see what this run has.
   P.begin_declarations();
@@ -113,6 +116,10 @@ void RunLoop::prepare() {
 
   // Timing rows in step order, the engine's own work where it happens.
   timing_ = TimingTable();
+  if (sim_.particles_.distributed()) {
+    row_migrate_ = timing_.row("communication", "migration to the owning rank");
+    row_ghosts_ = timing_.row("communication", "ghosts (halo) at the neighbour stage");
+  }
   for (int s = 0; s < kStageCount; ++s) {
     const char* stage = stage_name(static_cast<Stage>(s));
     if (static_cast<Stage>(s) == Stage::neighbors && neighbors_) {
@@ -124,6 +131,33 @@ void RunLoop::prepare() {
   }
   row_thermo_ = timing_.row("end_of_step", "thermo");
   row_checks_ = timing_.row("checks", "non-finite values, domain");
+}
+
+// A run on several ranks: the particles are shared out among them by space (the first run;
+// later ones share out the particles the script added since). Styles not yet written for it
+// are refused by name. The neighbour grid's cells are the whole domain's, from the count of
+// every rank's particles, so that every rank lists neighbours alike.
+void RunLoop::distribute() {
+  auto& P = sim_.particles_;
+  if (!Decomposition::wanted()) {
+    sim_.geometry_ = GridGeometry::of(sim_.domain_, sim_.h_, P.size());
+    sim_.global_count_ = P.size();
+    return;
+  }
+  for (const auto& f : sim_.fixes_)
+    if (!f->runs_distributed())
+      throw Error(fmt::format("fix '{}' ({}) does not run on several MPI ranks yet; run this scene on one "
+                              "(without mpirun)",
+                              f->id(), f->style()));
+  for (const auto& c : sim_.computes_)
+    if (!c->runs_distributed())
+      throw Error(fmt::format("compute '{}' ({}) does not run on several MPI ranks yet; run this scene on one "
+                              "(without mpirun)",
+                              c->id(), c->style()));
+  sim_.global_count_ = P.global_size();
+  sim_.geometry_ = GridGeometry::of(sim_.domain_, sim_.h_, sim_.global_count_);
+  if (!P.distributed() || P.replicated() > 0) sim_.decomposition_.distribute(P, sim_.geometry_);
+  sim_.positions_changed();
 }
 
 // What no single fix can see: a force style without an integrator of accelerations.
@@ -193,6 +227,7 @@ void RunLoop::run(std::int64_t steps, double until) {
   plan(steps, until);
   check_start_state();
   prepare();
+  sim_.decomposition_.reset_seconds();
   sim_.thermo_.start_run(sim_);
   const std::int64_t first = sim_.step_, last = first + steps;
   const double t0 = sim_.time(), end = until - 1e-12 * std::max(1.0, std::fabs(until));
@@ -230,7 +265,18 @@ void RunLoop::run(std::int64_t steps, double until) {
   for (const auto& f : sim_.fixes_) f->finish(sim_);
   timing_.wall_seconds = now() - start;
   timing_.steps = sim_.step_ - first;
-  timing_.particles = sim_.particles_.size();
+  timing_.particles = sim_.global_count_;
+  if (sim_.particles_.distributed()) {
+    const auto& load = sim_.decomposition_.load();
+    timing_.ranks = comm::ranks();
+    timing_.load_least = load.least;
+    timing_.load_mean = load.mean;
+    timing_.load_most = load.most;
+    timing_.communication_seconds = sim_.decomposition_.seconds();
+    timing_.ghosts_mean = comm::sum(std::int64_t(sim_.decomposition_.ghosts_mean() + 0.5)) / double(comm::ranks());
+    timing_.communication_least = comm::min(timing_.communication_seconds);
+    timing_.communication_most = comm::max(timing_.communication_seconds);
+  }
   timing_.neighbor_mean = neighbor_builds_ ? neighbor_mean_sum_ / static_cast<double>(neighbor_builds_) : 0;
   spdlog::info("{}", timing_.format());
 }
@@ -238,11 +284,17 @@ void RunLoop::run(std::int64_t steps, double until) {
 void RunLoop::step() {
   auto& P = sim_.particles_;
   const std::int64_t number = sim_.step_ + 1;  // the step being computed
+  if (P.distributed()) {  // particles that left this rank's box go to their owners
+    const double t0 = now();
+    sim_.decomposition_.migrate(P, sim_.geometry_);
+    sim_.positions_changed();
+    timing_.add(row_migrate_, now() - t0);
+  }
   if (neighbors_ && sim_.reorder_every_ > 0 && sim_.step_ % sim_.reorder_every_ == 0) {
     // Neighbours near in memory: particles in grid-cell order, by id within a cell, so that
     // memory order, and with it every neighbour list, depends on positions and ids only.
     const double t0 = now();
-    sim_.grid_.bin(P.x(), P.y(), P.z(), P.size(), sim_.domain_, sim_.h_);
+    sim_.grid_.bin(P.x(), P.y(), P.z(), P.size(), sim_.geometry_, cells_holding(P, sim_.geometry_));
     sim_.grid_.order_cells_by(P.ids());
     P.permute(sim_.grid_.sorted_order(), sim_.scratch(0));
     sim_.positions_changed();
@@ -251,14 +303,10 @@ void RunLoop::step() {
   run_stage(Stage::external_forces);
   run_stage(Stage::predict);
   if (neighbors_) {
-    double t0 = now();
-    sim_.grid_.bin(P.x(), P.y(), P.z(), P.size(), sim_.domain_, sim_.h_);
-    sim_.grid_.order_cells_by(P.ids());  // each list in cell order, then id: memory order plays no part
-    const double t1 = now();
-    sim_.grid_.build_lists(P.x(), P.y(), P.z(), sim_.h_);
-    sim_.grid_version_ = sim_.positions_version_;
-    timing_.add(row_binning_, t1 - t0);
-    timing_.add(row_lists_, now() - t1);
+    const Simulation::ListTimes times = sim_.bin_and_list();
+    if (P.distributed()) timing_.add(row_ghosts_, times.ghosts);
+    timing_.add(row_binning_, times.binning);
+    timing_.add(row_lists_, times.lists);
     neighbor_mean_sum_ += sim_.grid_.mean_neighbors();
     ++neighbor_builds_;
     const std::uint32_t most = sim_.grid_.max_neighbors();
@@ -332,6 +380,10 @@ void RunLoop::call(Stage stage, Fix& fix, int iteration) {
 // Ctrl-C: the step is complete; flush the fixes' files, save the state, stop.
 void RunLoop::stop_interrupted() {
   for (const auto& f : sim_.fixes_) f->finish(sim_);
+  if (sim_.particles_.distributed())
+    throw Interrupted(fmt::format("interrupted after step {} (t = {} s); a distributed run writes no restart yet",
+                                  sim_.step_, sim_.time()),
+                      "");
   std::string path;
   for (const auto& f : sim_.fixes_)
     if (auto written = f->write_restart_now(sim_)) path = *written;

@@ -1,5 +1,7 @@
 #include "engine/core/simulation.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -8,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/sph/pair_sums.hpp"
 #include "engine/sph/resolution.hpp"
@@ -204,13 +207,78 @@ Compute* Simulation::find_compute(const std::string& id) const {
 }
 
 void Simulation::refresh_neighbors() {
-  if (grid_version_ == positions_version_ && grid_.particle_count() == particles_.size()) return;
+  if (lists_valid_ && grid_version_ == positions_version_ && grid_.particle_count() == particles_.size()) return;
   if (h_ <= 0) throw Error("the kernel radius h is not set");
-  const auto& P = particles_;
-  grid_.bin(P.x(), P.y(), P.z(), P.size(), domain_, h_);
-  grid_.order_cells_by(P.ids());
-  grid_.build_lists(P.x(), P.y(), P.z(), h_);
+  if (!particles_.distributed()) geometry_ = GridGeometry::of(domain_, h_, particles_.size());
+  bin_and_list();
+}
+
+Simulation::ListTimes Simulation::bin_and_list() {
+  auto& P = particles_;
+  ListTimes times;
+  double t = omp_get_wtime();
+  auto lap = [&](double& seconds) {
+    const double now = omp_get_wtime();
+    seconds = now - t;
+    t = now;
+  };
+  rebuild_ghosts();
+  lap(times.ghosts);
+  grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_);
+  grid_.order_cells_by(P.ids());  // each list in cell order, then id: memory order plays no part
+  lap(times.binning);
+  grid_.build_lists(P.x(), P.y(), P.z(), h_, P.size());
+  lap(times.lists);
   grid_version_ = positions_version_;
+  lists_valid_ = true;
+  return times;
+}
+
+void Simulation::rebuild_ghosts() {
+  auto& P = particles_;
+  ghost_range_ = CellRange::all(geometry_);
+  if (P.distributed()) {
+    ghost_range_ = decomposition_.build_ghosts(P, geometry_);
+    ghost_positions_version_ = positions_version_;
+    lists_valid_ = false;  // the lists' ghost indices name other particles now
+  }
+  ghosts_version_ = positions_version_;
+  point_grid_version_ = 0;
+  // The density over the lists is computed afresh (with the ghosts, which are others now).
+  density_version_ = volume_version_ = 0;
+}
+
+const NeighborGrid& Simulation::point_cells() {
+  if (h_ <= 0) throw Error("the kernel radius h is not set (pbf.kernel_radius): a probe has no kernel");
+  auto& P = particles_;
+  if (!P.distributed()) {
+    geometry_ = GridGeometry::of(domain_, h_, P.size());
+    ghost_range_ = CellRange::all(geometry_);
+  } else if (ghosts_version_ != positions_version_) {
+    rebuild_ghosts();
+  }
+  if (point_grid_version_ != positions_version_ || point_grid_.binned_count() != P.size_with_ghosts()) {
+    point_grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_);
+    point_grid_.order_cells_by(P.ids());
+    point_grid_version_ = positions_version_;
+  }
+  return point_grid_;
+}
+
+bool Simulation::measures_at(double x, double y, double z) const {
+  if (!particles_.distributed()) return true;
+  const long cell[3] = {geometry_.cell_along(0, x), geometry_.cell_along(1, y), geometry_.cell_along(2, z)};
+  return decomposition_.owner(cell) == comm::rank();
+}
+
+void Simulation::update_ghosts(std::initializer_list<real*> arrays) {
+  if (particles_.distributed()) decomposition_.update(std::span<real* const>(arrays.begin(), arrays.size()));
+}
+
+void Simulation::update_ghost_positions() {
+  if (!particles_.distributed() || ghost_positions_version_ == positions_version_) return;
+  update_ghosts({particles_.x(), particles_.y(), particles_.z()});
+  ghost_positions_version_ = positions_version_;
 }
 
 const real* Simulation::solver_density() {
@@ -220,14 +288,15 @@ const real* Simulation::solver_density() {
 }
 
 const std::vector<real>& Simulation::summed_density() {
-  if (density_version_ == positions_version_ && density_.size() == particles_.size()) return density_;
-  if (grid_.particle_count() != particles_.size()) refresh_neighbors();
+  if (density_version_ == positions_version_ && density_.size() == particles_.size_with_ghosts()) return density_;
+  if (grid_.particle_count() != particles_.size() || !lists_valid_) refresh_neighbors();
   const std::size_t n = particles_.size();
-  density_.resize(n);
+  density_.resize(particles_.size_with_ghosts());
+  update_ghost_positions();
   const real *x = particles_.x(), *y = particles_.y(), *z = particles_.z(), *m = particles_.mass();
   const Kernels& K = kernels_;
   for (DensityBoundary* b : boundaries_) b->prepare(*this);
-  density_sums(PairInput{grid_, x, y, z, m, uniform_mass(m, n), K, n}, density_.data());
+  density_sums(PairInput{grid_, x, y, z, m, uniform_mass(m, n, particles_.distributed()), K, n}, density_.data());
   if (!boundaries_.empty()) {
 #pragma omp parallel for schedule(static, 256)
     for (std::size_t i = 0; i < n; ++i) {
@@ -235,6 +304,7 @@ const std::vector<real>& Simulation::summed_density() {
       for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], i, density_[i], grad);
     }
   }
+  update_ghosts({density_.data()});
   density_version_ = positions_version_;
   return density_;
 }
@@ -242,7 +312,7 @@ const std::vector<real>& Simulation::summed_density() {
 const std::vector<real>& Simulation::summed_volume() {
   const std::vector<real>& rho = summed_density();
   if (volume_version_ == density_version_ && volume_.size() == rho.size()) return volume_;
-  const std::size_t n = rho.size();
+  const std::size_t n = rho.size();  // ghosts included: their densities came with update_ghosts
   volume_.resize(n);
   const real* m = particles_.mass();
 #pragma omp parallel for simd schedule(static)
@@ -253,7 +323,7 @@ const std::vector<real>& Simulation::summed_volume() {
 
 real* Simulation::scratch(std::size_t k) {
   if (k >= kScratchArrays) throw Error(fmt::format("scratch array {} asked for; there are {}", k, kScratchArrays));
-  scratch_[k].resize(particles_.size());
+  scratch_[k].resize(particles_.size_with_ghosts());
   return scratch_[k].data();
 }
 

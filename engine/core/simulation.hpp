@@ -2,6 +2,7 @@
 // The simulation: the scene (domain, kernel radius, time step, particles), the pipeline of
 // fixes and computes a script assembles, and the run loop. It knows nothing of Lua.
 #include <cstdint>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "engine/core/particles.hpp"
 #include "engine/core/thermo.hpp"
 #include "engine/core/timing.hpp"
+#include "engine/distributed/decomposition.hpp"
 
 namespace pbf {
 
@@ -109,6 +111,13 @@ class Simulation {
   const NeighborGrid& neighbors() const { return grid_; }
   // Rebuilds the lists if positions changed since they were built (for measurements).
   void refresh_neighbors();
+  // The cells of point measurements (probes, gauges; engine/sph/point_query.hpp): this rank's
+  // particles and, in a distributed run, the ghosts at the current positions, binned and
+  // ordered by id. Collective in a distributed run.
+  const NeighborGrid& point_cells();
+  // Whether this rank measures at a point (the rank whose box holds the point's cell; in one
+  // process, always): its particles and ghosts cover the point's neighbourhood.
+  bool measures_at(double x, double y, double z) const;
   // SPH density with wall contributions, at the current positions over the current lists.
   const std::vector<real>& summed_density();
   // Each particle's volume m / rho over that density (what the velocity sums weigh by).
@@ -131,6 +140,20 @@ class Simulation {
     std::int64_t iteration_sum = 0, steps = 0;
   };
   SolverReport& solver_report() { return solver_report_; }
+  // --- distributed runs (engine/distributed/decomposition.hpp) ---
+  // The particles of all ranks (counted at the start of each run; collective after the script
+  // added particles to a distributed run, before the next run shares them out).
+  std::size_t global_count() const {
+    if (!particles_.distributed()) return particles_.size();
+    return particles_.replicated() ? particles_.global_size() : global_count_;
+  }
+  // The ghosts' copies of these arrays (one value per particle, ghosts included) from their
+  // owners: a pass calls it for the values it reads at neighbours that changed since the
+  // neighbour stage. A no-op in a run of one process. Collective.
+  void update_ghosts(std::initializer_list<real*> arrays);
+  // The ghosts' positions, when particles moved since they were last sent. Collective.
+  void update_ghost_positions();
+  const Decomposition& decomposition() const { return decomposition_; }
   // Fixes that move particles outside the run loop's knowledge call this.
   void positions_changed() { ++positions_version_; }
   const std::vector<DensityBoundary*>& density_boundaries() const { return boundaries_; }
@@ -165,8 +188,20 @@ class Simulation {
   Thermo thermo_;
   TimingTable timing_;
 
-  NeighborGrid grid_;
-  std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0;
+  NeighborGrid grid_, point_grid_;
+  std::uint64_t point_grid_version_ = 0, ghosts_version_ = 0;
+  bool lists_valid_ = false;  // false when the ghosts were rebuilt after the lists
+  void rebuild_ghosts();      // at the current positions: returns nothing, sets ghost_range_
+  CellRange ghost_range_;
+  GridGeometry geometry_;
+  Decomposition decomposition_;
+  std::size_t global_count_ = 0;
+  // The grid and lists of this rank's particles (ghosts rebuilt first); the seconds each part took.
+  struct ListTimes {
+    double ghosts = 0, binning = 0, lists = 0;
+  };
+  ListTimes bin_and_list();
+  std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0, ghost_positions_version_ = 0;
   std::vector<real> density_, volume_;
   std::uint64_t volume_version_ = 0;
   std::vector<real> scratch_[kScratchArrays];

@@ -1,5 +1,7 @@
 #include "engine/core/thermo.hpp"
 
+#include "engine/distributed/comm.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -28,7 +30,7 @@ void Thermo::configure(int every, std::vector<std::string> columns, const std::s
   if (csv_path != csv_path_) {
     csv_.close();
     csv_path_ = csv_path;
-    if (!csv_path_.empty()) {
+    if (!csv_path_.empty() && comm::root()) {  // a distributed run's file is rank 0's
       const auto parent = std::filesystem::path(csv_path_).parent_path();
       std::error_code ec;
       if (!parent.empty()) std::filesystem::create_directories(parent, ec);
@@ -68,7 +70,7 @@ std::vector<double> Thermo::values(Simulation& sim) const {
     if (col == "step") out.push_back(static_cast<double>(sim.step()));
     else if (col == "time") out.push_back(sim.time());
     else if (col == "dt") out.push_back(sim.timestep());
-    else if (col == "particles") out.push_back(static_cast<double>(sim.particles().size()));
+    else if (col == "particles") out.push_back(static_cast<double>(sim.global_count()));
     else {
       const auto dot = col.find('.');
       const std::string id = col.substr(0, dot);

@@ -41,6 +41,19 @@ std::string TimingTable::format() const {
   const double rate = wall_seconds > 0 ? static_cast<double>(steps) * static_cast<double>(particles) / wall_seconds : 0;
   out += fmt::format("  particle-steps per second: {:.4g}\n", rate);
   out += fmt::format("  neighbours per particle: mean {:.1f}, max {}", neighbor_mean, neighbor_max);
+  if (ranks > 1) {
+    out += fmt::format("\n  {} MPI ranks; particles per rank: min {:.0f}, mean {:.1f}, max {:.0f} (max/mean {:.3f}); "
+                       "ghosts per rank: mean {:.0f}",
+                       ranks, load_least, load_mean, load_most, load_mean > 0 ? load_most / load_mean : 0.0,
+                       ghosts_mean);
+    out += fmt::format("\n  communication on rank 0: {:.3f} s, {:.1f}% (migration, ghosts, and the ghosts' updates "
+                       "inside the fixes' rows)",
+                       communication_seconds, 100 * communication_seconds / total);
+    out += fmt::format("\n  communication of any rank: least {:.3f} s, {:.1f}%, most {:.3f} s, {:.1f}% (beyond the least: "
+                       "waiting for slower ranks)",
+                       communication_least, 100 * communication_least / total, communication_most,
+                       100 * communication_most / total);
+  }
   return out;
 }
 

@@ -42,6 +42,7 @@ class Box : public Fix, public DensityBoundary {
     return {Stage::constraints, Stage::velocity_update};
   }
   Role role() const override { return Role::boundary; }
+  bool runs_distributed() const override { return true; }  // each particle on its own
   const char* exclusive_job() const override { return "walls at the domain faces"; }
   DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
 

@@ -27,6 +27,7 @@
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/geometry/solid_body.hpp"
 
 namespace pbf {
@@ -46,6 +47,7 @@ class Cfl : public Fix {
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
   const char* exclusive_job() const override { return "time-step control"; }
+  bool runs_distributed() const override { return true; }  // the largest speed and acceleration of all ranks
 
   void init(Simulation& sim) override {
     if (!started_) {
@@ -106,6 +108,12 @@ class Cfl : public Fix {
         const double ax = P.data(*accel, 0)[i], ay = P.data(*accel, 1)[i], az = P.data(*accel, 2)[i];
         a2 = std::max(a2, ax * ax + ay * ay + az * az);
       }
+    }
+    if (P.distributed()) {
+      double most[2] = {v2, a2};
+      comm::max(most);
+      v2 = most[0];
+      a2 = most[1];
     }
     for (const SolidBody* solid : sim.solid_bodies()) {
       const double speed = solid->max_speed(sim.time(), sim.timestep());

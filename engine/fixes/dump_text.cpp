@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "engine/distributed/lines_by_id.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/output/dump.hpp"
@@ -22,6 +23,7 @@ constexpr std::size_t kBlockLines = 16384;
 class DumpText : public Dump {
  public:
   DumpText(const std::string& id, const Params& p) : Dump(id, "dump/text", p) {}
+  bool runs_distributed() const override { return true; }  // one file, written by every rank
 
  private:
   void write_frame(Simulation& sim, const std::string& path, std::int64_t) override {
@@ -39,6 +41,7 @@ class DumpText : public Dump {
       }
       fmt::format_to(std::back_inserter(buf), "\n");
     }
+    if (sim.particles().distributed()) return write_distributed(sim, path, buf);
     // A particle field is read where it lies, through the index of each id; only derived
     // quantities (speed, density, ...) are gathered, so that a frame of position and velocity
     // costs no copy of the particles (memory is the limit at a million of them).
@@ -85,6 +88,37 @@ class DumpText : public Dump {
       for (const auto& part : lines) file.write(part.data(), part.size());
     }
     file.commit();
+  }
+
+  // Every rank formats its own particles' lines (in memory order) and the file is written
+  // together, in id order (engine/distributed/lines_by_id.hpp): the same bytes as one process's.
+  void write_distributed(Simulation& sim, const std::string& path, const fmt::memory_buffer& head) {
+    // The ghosts at the current positions first (derived fields read neighbours): rebuilding
+    // them later would move the arrays under the columns' pointers.
+    sim.refresh_neighbors();
+    const auto& P = sim.particles();
+    const std::size_t n = P.size(), total = sim.global_count();
+    std::vector<std::vector<const real*>> columns(fields().size());
+    for (std::size_t k = 0; k < fields().size(); ++k)
+      if (!fields().is_id(k)) columns[k] = fields().columns(sim, k);
+    std::string first(head.data(), head.size());
+    first += fmt::format("{}\n", total);
+    fmt::memory_buffer text;
+    std::vector<std::size_t> ends(n);
+    auto out = std::back_inserter(text);
+    for (std::size_t i = 0; i < n; ++i) {
+      const char* separator = "";
+      for (std::size_t k = 0; k < fields().size(); ++k)
+        for (int c = 0; c < fields().components(k); ++c) {
+          if (fields().is_id(k)) fmt::format_to(out, "{}{}", separator, P.ids()[i]);
+          else fmt::format_to(out, "{}{}", separator, columns[k][static_cast<std::size_t>(c)][i]);
+          separator = " ";
+        }
+      fmt::format_to(out, "\n");
+      ends[i] = text.size();
+    }
+    write_lines_by_id(path, first, total, std::span<const std::int64_t>(P.ids(), n),
+                      std::span<const char>(text.data(), text.size()), ends);
   }
 };
 

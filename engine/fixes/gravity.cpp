@@ -19,6 +19,7 @@ class Gravity : public Fix {
     const Fix* integrator = sim.integrator();
     into_accelerations_ = integrator && integrator->integration() == Integration::accelerations;
   }
+  bool runs_distributed() const override { return true; }  // each particle on its own
   std::vector<Stage> stages() const override {
     return {into_accelerations_ ? Stage::forces : Stage::external_forces};
   }

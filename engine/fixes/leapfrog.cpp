@@ -20,6 +20,7 @@ class Leapfrog : public Fix {
   std::vector<Stage> stages() const override { return {Stage::predict, Stage::velocity_update}; }
   // Before the walls in velocity_update, and initialised first, so that gravity sees the field.
   Role role() const override { return Role::solver; }
+  bool runs_distributed() const override { return true; }  // each particle on its own
   Integration integration() const override { return Integration::accelerations; }
   const char* exclusive_job() const override { return "time integration"; }
 

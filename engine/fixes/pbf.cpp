@@ -42,6 +42,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/sph/pair_sums.hpp"
@@ -99,6 +100,7 @@ class PositionBasedFluid : public Fix {
     return adaptive() ? done >= max_iterations_ || (done >= min_iterations_ && reached_) : done >= iterations_;
   }
   bool needs_neighbors() const override { return true; }
+  bool runs_distributed() const override { return true; }  // ghosts' positions and multipliers refreshed
   Integration integration() const override { return Integration::positions; }
   const char* exclusive_job() const override { return "time integration"; }
 
@@ -114,7 +116,7 @@ class PositionBasedFluid : public Fix {
       first_wall_ = lattice_wall_density(P.mean_mass(), sim.kernels(), sim.rest_density());
       rest_density_ = real(sim.rest_density());
     }
-    uniform_mass_ = uniform_mass(P.mass(), P.size());
+    uniform_mass_ = uniform_mass(P.mass(), P.size(), P.distributed());
     S0_ = lattice_gradient_sum(P.mean_mass(), sim.kernels(), sim.rest_density());
     scorr_w_ = sim.kernels().W(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
   }
@@ -167,6 +169,7 @@ class PositionBasedFluid : public Fix {
          *grad_sq = sim.scratch(4);
     real* excess = grad_x;  // max(rho/rho0 - 1, 0) of each particle
     wall_gradients(sim, walls.size());
+    sim.update_ghost_positions();  // moved by the last iteration's corrections and walls
     const PairInput pairs{grid, x, y, z, m, uniform_mass_, K, n};
     constraint_sums(pairs, inv_rho0, fluid_rho, grad_x, grad_y, grad_z, grad_sq);
 #pragma omp parallel for schedule(static, 256)
@@ -200,6 +203,7 @@ class PositionBasedFluid : public Fix {
 
     // The corrections, in the arrays of the gradients (used up).
     real *dpx = grad_x, *dpy = grad_y, *dpz = grad_z;
+    sim.update_ghosts({lambda});
     constraint_corrections(pairs, lambda, inv_rho0, scorr_scale, inv_wdq, n_, dpx, dpy, dpz);
     if (!walls.empty()) {
       // A wall's gradient moves only particle i (the wall has no lambda of its own); the wall
@@ -320,11 +324,14 @@ class PositionBasedFluid : public Fix {
   }
 
   void measure_error(Simulation& sim, const real* excess) {
-    const std::size_t n = sim.particles().size();
-    const double mean = n ? deterministic_sum(n, [&](std::size_t i) { return double(excess[i]); }) / double(n) : 0;
-    real most = 0;
-#pragma omp parallel for simd reduction(max : most) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) most = excess[i] > most ? excess[i] : most;
+    const std::size_t n = sim.particles().size(), all = sim.global_count();
+    const bool ranks = sim.particles().distributed();
+    const double mean =
+        all ? deterministic_sum(n, [&](std::size_t i) { return double(excess[i]); }, ranks) / double(all) : 0;
+    real local_most = 0;
+#pragma omp parallel for simd reduction(max : local_most) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) local_most = excess[i] > local_most ? excess[i] : local_most;
+    const double most = ranks ? comm::max(double(local_most)) : double(local_most);
     reached_ = (target_ <= 0 || mean <= target_) && (target_max_ <= 0 || most <= target_max_);
     sim.solver_report().error = mean;
   }

@@ -24,6 +24,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/names.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/registry/builtin_styles.hpp"
 
@@ -52,10 +53,12 @@ class Sample : public Fix {
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
   Role role() const override { return Role::output; }
+  // Every rank evaluates the computes (collective); rank 0 writes the file.
+  bool runs_distributed() const override { return true; }
 
   void init(Simulation& sim) override {
     const std::string header = header_line(sim);
-    if (!file_) open(header);
+    if (!opened_) open(header);
     if (header != header_)
       throw Error(fmt::format("the computes' values changed since '{}' was started ({} now, {} then): sample "
                               "them into a new file",
@@ -134,7 +137,15 @@ class Sample : public Fix {
   // run wrote, cut back to the length it had at the restart.
   void open(const std::string& header) {
     std::error_code ec;
+    opened_ = true;
     const bool continuing = restored_ && saved_path_ == path_ && std::filesystem::exists(path_, ec);
+    if (!comm::root()) {  // the other ranks of a distributed run keep the count of bytes only
+      if (!continuing) {
+        bytes_ = header.size() + 1;
+        header_ = header;
+      }
+      return;
+    }
     if (continuing) {
       const auto size = std::filesystem::file_size(path_, ec);
       if (!ec && size >= bytes_) std::filesystem::resize_file(path_, bytes_, ec);
@@ -169,6 +180,10 @@ class Sample : public Fix {
   // A row goes out whole or the run stops: a full disk must not leave a cut row behind a run
   // that says it succeeded.
   void write(const std::string& text) {
+    if (!file_) {  // not rank 0
+      bytes_ += text.size();
+      return;
+    }
     if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0) fail();
     bytes_ += text.size();
   }
@@ -180,7 +195,7 @@ class Sample : public Fix {
   double interval_;
   std::string path_, saved_path_, header_;
   std::FILE* file_ = nullptr;
-  bool started_ = false, restored_ = false;
+  bool started_ = false, restored_ = false, opened_ = false;
   double start_time_ = 0;
   std::int64_t next_ = 1, last_step_ = -1;  // next multiple of the interval due; step of the last row
   std::uint64_t bytes_ = 0;                  // the file's length

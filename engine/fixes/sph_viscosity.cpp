@@ -30,6 +30,8 @@ class SphViscosity : public Fix {
   std::vector<Stage> stages() const override { return {Stage::forces}; }
   bool needs_neighbors() const override { return true; }
   bool adds_accelerations() const override { return true; }
+  // Reads velocities (as the neighbour stage sent them) and the density wcsph refreshed.
+  bool runs_distributed() const override { return true; }
 
   void init(Simulation& sim) override {
     accel_ = sim.particles().declare(kAccelerationField);

@@ -24,6 +24,7 @@ class VorticityConfinement : public Fix {
 
   std::vector<Stage> stages() const override { return {Stage::velocity_post}; }
   bool needs_neighbors() const override { return true; }
+  bool runs_distributed() const override { return true; }  // ghosts' velocities and |omega| refreshed
 
   void init(Simulation& sim) override {
     omega_ = sim.particles().declare({"vorticity", 3, "vorticity, curl of the velocity (1/s)", false});
@@ -37,7 +38,9 @@ class VorticityConfinement : public Fix {
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *wx = P.data(omega_, 0), *wy = P.data(omega_, 1), *wz = P.data(omega_, 2);
     real* magnitude = sim.scratch(3);
+    sim.update_ghosts({vx, vy, vz});
     velocity_curl(sim, volume, wx, wy, wz, magnitude);
+    sim.update_ghosts({magnitude});
 
     // eta, the gradient of |omega|; it reads no velocity, so each particle's velocity can
     // take its acceleration as soon as eta is known.

@@ -28,6 +28,7 @@
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/sph/mass.hpp"
 
 namespace pbf {
@@ -39,8 +40,9 @@ namespace {
 // the Mach number stays under 0.1 and the density varies by about 1% (Monaghan 1994).
 double default_sound_speed(const Simulation& sim, double gravity) {
   const auto& P = sim.particles();
-  double lo = P.z()[0], hi = P.z()[0];
+  double lo = INFINITY, hi = -INFINITY;
   for (std::size_t i = 0; i < P.size(); ++i) lo = std::min(lo, double(P.z()[i])), hi = std::max(hi, double(P.z()[i]));
+  if (P.distributed()) lo = comm::min(lo), hi = comm::max(hi);  // every rank's
   const double height = hi - lo + lattice_spacing(P.mean_mass(), sim.kernels(), sim.rest_density());
   return 10 * std::sqrt(2 * std::fabs(gravity) * height);
 }
@@ -80,13 +82,12 @@ class Wcsph : public Fix {
     // A new field holds, before the first step, the density the solver starts from: rest
     // density for the continuity equation (p = 0), the SPH sum for the summation.
     if (fresh) {
-      real* rho = P.data(rho_);
       if (continuity) {
-        std::fill(rho, rho + P.size(), real(sim.rest_density()));
+        std::fill(P.data(rho_), P.data(rho_) + P.size(), real(sim.rest_density()));
       } else {
-        sim.refresh_neighbors();
+        sim.refresh_neighbors();  // in a distributed run it adds ghosts, which moves the arrays
         const auto& summed = sim.summed_density();
-        std::copy(summed.begin(), summed.end(), rho);
+        std::copy(summed.begin(), summed.end(), P.data(rho_));
       }
     }
     // The pressure of the density the run starts from: the field is recomputed before each
@@ -95,8 +96,12 @@ class Wcsph : public Fix {
   }
 
   double signal_speed() const override { return c0_; }
+  bool runs_distributed() const override { return true; }  // ghosts' density and pressure refreshed
 
   void forces(Simulation& sim) override {
+    // The summed density first: were the lists stale it would rebuild them, and the ghosts
+    // with them, which moves the arrays under any pointer taken before.
+    if (density_ == "summation") sim.summed_density();
     auto& P = sim.particles();
     const auto& grid = sim.neighbors();
     const Kernels& K = sim.kernels();
@@ -143,6 +148,7 @@ class Wcsph : public Fix {
     check_density(sim, rho);
 
     pressure_from_density(sim, rho, p);
+    sim.update_ghosts({rho, p});  // the force reads them at neighbours
 
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {

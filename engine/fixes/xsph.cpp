@@ -18,6 +18,7 @@ class XsphViscosity : public Fix {
 
   std::vector<Stage> stages() const override { return {Stage::velocity_post}; }
   bool needs_neighbors() const override { return true; }
+  bool runs_distributed() const override { return true; }  // ghosts' velocities refreshed
 
   void velocity_post(Simulation& sim) override {
     const std::vector<real>& volume = sim.summed_volume();
@@ -25,6 +26,7 @@ class XsphViscosity : public Fix {
     const std::size_t n = P.size();
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *dx = sim.scratch(0), *dy = sim.scratch(1), *dz = sim.scratch(2);
+    sim.update_ghosts({vx, vy, vz});
     const PairInput pairs{sim.neighbors(), P.x(), P.y(), P.z(), P.mass(), 0, sim.kernels(), n};
     smoothing_sums(pairs, volume.data(), vx, vy, vz, dx, dy, dz);
     const real c = real(c_);

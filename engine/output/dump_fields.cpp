@@ -65,13 +65,14 @@ std::string DumpFields::unit(std::size_t k) const {
   return "";
 }
 
-void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) {
-  const auto& P = sim.particles();
+std::vector<const real*> DumpFields::columns(Simulation& sim, std::size_t k) {
+  auto& P = sim.particles();
   const std::size_t n = P.size();
   const std::string& name = names_[k];
   const int nc = components_[k];
-  // One value per particle in memory order first, then reordered by id below.
   std::vector<const real*> columns;
+  scratch_.resize(names_.size());
+  std::vector<real>& scratch = scratch_[k];
   if (const auto f = P.find(name)) {
     for (int c = 0; c < nc; ++c) columns.push_back(P.data(*f, c));
   } else if (name == "density") {  // no solver keeps a density field: the SPH sum
@@ -81,25 +82,34 @@ void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) 
     columns = {sim.summed_density().data()};
   } else if (name == "density_error") {
     const real* rho = sim.solver_density();
-    scratch_.resize(n);
+    scratch.resize(n);
     const real inverse = real(1 / sim.rest_density());
-    for (std::size_t i = 0; i < n; ++i) scratch_[i] = rho[i] * inverse - 1;
-    columns = {scratch_.data()};
+    for (std::size_t i = 0; i < n; ++i) scratch[i] = rho[i] * inverse - 1;
+    columns = {scratch.data()};
   } else if (name == "speed") {
-    scratch_.resize(n);
+    scratch.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-      scratch_[i] = std::sqrt(P.vx()[i] * P.vx()[i] + P.vy()[i] * P.vy()[i] + P.vz()[i] * P.vz()[i]);
-    columns = {scratch_.data()};
+      scratch[i] = std::sqrt(P.vx()[i] * P.vx()[i] + P.vy()[i] * P.vy()[i] + P.vz()[i] * P.vz()[i]);
+    columns = {scratch.data()};
   } else if (name == "vorticity_magnitude") {
     sim.refresh_neighbors();
     const std::vector<real>& volume = sim.summed_volume();
+    sim.update_ghosts({P.vx(), P.vy(), P.vz()});
     std::vector<real> w(3 * n);
-    scratch_.resize(n);
-    velocity_curl(sim, volume, w.data(), w.data() + n, w.data() + 2 * n, scratch_.data());
-    columns = {scratch_.data()};
+    scratch.resize(n);
+    velocity_curl(sim, volume, w.data(), w.data() + n, w.data() + 2 * n, scratch.data());
+    columns = {scratch.data()};
   } else if (name == "id") {
     throw Error("internal: the id field is gathered with gather_ids");
   }
+  return columns;
+}
+
+void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) {
+  const auto& P = sim.particles();
+  const std::size_t n = P.size();
+  const int nc = components_[k];
+  const std::vector<const real*> columns = this->columns(sim, k);  // in memory order
   const std::vector<std::uint32_t> index = P.index_of_id();
   out.resize(n * static_cast<std::size_t>(nc));
 #pragma omp parallel for schedule(static)

@@ -37,12 +37,15 @@ class DumpFields {
   // Field k's values for particles in id order, components interleaved (n * components).
   // Derived quantities are computed afresh (density refreshes the neighbour lists).
   void gather(Simulation& sim, std::size_t k, std::vector<real>& out);
+  // Field k's components, one value per particle of this rank in memory order (valid until the
+  // next call). Collective in a distributed run (derived fields read neighbours).
+  std::vector<const real*> columns(Simulation& sim, std::size_t k);
   void gather_ids(const Simulation& sim, std::vector<std::int64_t>& out) const;
 
  private:
   Names names_;
   std::vector<int> components_;
-  std::vector<real> scratch_;
+  std::vector<std::vector<real>> scratch_;  // per field: derived values
 };
 
 }  // namespace pbf

@@ -30,26 +30,45 @@ constexpr std::uint64_t kMostPairs = 0xFFFFFFFFu - NeighborGrid::kListPadding;
 
 std::size_t NeighborGrid::max_cells(std::size_t n) { return std::max<std::size_t>(4 * n, 1u << 15); }
 
-std::size_t NeighborGrid::cell_of(real x, real y, real z) const {
-  const long cx = clamp_cell(x, lo_[0], cell_size_, dims_[0]);
-  const long cy = clamp_cell(y, lo_[1], cell_size_, dims_[1]);
-  const long cz = clamp_cell(z, lo_[2], cell_size_, dims_[2]);
-  return static_cast<std::size_t>((cz * dims_[1] + cy) * dims_[0] + cx);
-}
-
-void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h) {
+GridGeometry GridGeometry::of(const Domain& domain, double h, std::size_t particles) {
   // Cells at least h wide; widen them when the box would need more cells than the cap.
   // Counted in double until they fit: a huge domain over a tiny h must not overflow a long.
-  cell_size_ = h;
-  const double cap = static_cast<double>(max_cells(n));
-  auto cells_along = [&](int a) { return std::max(1.0, std::ceil(domain.extent(a) / cell_size_)); };
+  GridGeometry g;
+  g.cell_size = h;
+  const double cap = static_cast<double>(NeighborGrid::max_cells(particles));
+  auto cells_along = [&](int a) { return std::max(1.0, std::ceil(domain.extent(a) / g.cell_size)); };
   for (;;) {
     const double total = cells_along(0) * cells_along(1) * cells_along(2);
     if (total <= cap) break;
-    cell_size_ *= std::max(1.01, std::cbrt(total / cap));  // an infinite total ends in one cell
+    g.cell_size *= std::max(1.01, std::cbrt(total / cap));  // an infinite total ends in one cell
   }
-  for (int a = 0; a < 3; ++a) dims_[a] = static_cast<long>(cells_along(a));
-  for (int a = 0; a < 3; ++a) lo_[a] = domain.lo[a];
+  for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<long>(cells_along(a));
+  for (int a = 0; a < 3; ++a) g.lo[a] = domain.lo[a];
+  return g;
+}
+
+long GridGeometry::cell_along(int axis, double coordinate) const {
+  return clamp_cell(coordinate, lo[axis], cell_size, dims[axis]);
+}
+
+std::size_t NeighborGrid::cell_of(real x, real y, real z) const {
+  const real p[3] = {x, y, z};
+  long c[3];
+  for (int a = 0; a < 3; ++a)
+    c[a] = std::clamp(geometry_.cell_along(a, p[a]) - range_.lo[a], 0L, dims_[a] - 1);
+  return static_cast<std::size_t>((c[2] * dims_[1] + c[1]) * dims_[0] + c[0]);
+}
+
+void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h) {
+  const GridGeometry g = GridGeometry::of(domain, h, n);
+  bin(x, y, z, n, g, CellRange::all(g));
+}
+
+void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t n, const GridGeometry& geometry,
+                       const CellRange& range) {
+  geometry_ = geometry;
+  range_ = range;
+  for (int a = 0; a < 3; ++a) dims_[a] = std::max(1L, range.hi[a] - range.lo[a]);
   const std::size_t ncells = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
 
   cell_.resize(n);
@@ -104,15 +123,15 @@ void NeighborGrid::order_cells_by(const std::int64_t* key) {
     }
 }
 
-void NeighborGrid::build_lists(const real* x, const real* y, const real* z, double h) {
-  const std::size_t n = cell_.size();
+void NeighborGrid::build_lists(const real* x, const real* y, const real* z, double h, std::size_t listed) {
+  const std::size_t binned = cell_.size(), n = std::min(listed, binned);
   const real* position[3] = {x, y, z};
   for (int a = 0; a < 3; ++a) {
-    packed_[a].resize(n + kListPadding);
+    packed_[a].resize(binned + kListPadding);
     real* packed = packed_[a].data();
     const real* p = position[a];
 #pragma omp parallel for schedule(static)
-    for (std::size_t s = 0; s < n; ++s) packed[s] = p[sorted_[s]];
+    for (std::size_t s = 0; s < binned; ++s) packed[s] = p[sorted_[s]];
   }
   const CellSearch search{x, y, z, packed_[0].data(), packed_[1].data(), packed_[2].data(), sorted_.data(),
                           cell_.data(), cell_start_.data(), {dims_[0], dims_[1], dims_[2]},

@@ -26,14 +26,42 @@ namespace pbf {
 
 struct CellSearch;  // engine/sph/neighbor_search_simd.hpp
 
+// The cells of the whole domain, at least h wide, widened when the domain would need more
+// than max_cells(particles). A distributed run gives every rank the same geometry (from the
+// particle count of all ranks), so that a particle's neighbours come in the same order
+// whichever rank lists them.
+struct GridGeometry {
+  double lo[3] = {0, 0, 0};
+  double cell_size = 1;
+  long dims[3] = {1, 1, 1};
+  static GridGeometry of(const Domain& domain, double h, std::size_t particles);
+  // The cell along `axis` of a coordinate, clamped into the grid (NaN: cell 0).
+  long cell_along(int axis, double coordinate) const;
+};
+
+// A box of cells [lo, hi) along each axis.
+struct CellRange {
+  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  static CellRange all(const GridGeometry& g) { return {{0, 0, 0}, {g.dims[0], g.dims[1], g.dims[2]}}; }
+  bool empty() const { return hi[0] <= lo[0] || hi[1] <= lo[1] || hi[2] <= lo[2]; }
+  bool contains(const long c[3]) const {
+    return c[0] >= lo[0] && c[0] < hi[0] && c[1] >= lo[1] && c[1] < hi[1] && c[2] >= lo[2] && c[2] < hi[2];
+  }
+};
+
 class NeighborGrid {
  public:
   // Bins particles into cells; afterwards sorted_order() lists particles cell by cell.
   void bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h);
+  // The same over the cells `range` of `geometry`, which must hold every particle's cell (a
+  // rank of a distributed run bins its own particles and its ghosts in the cells they cover).
+  void bin(const real* x, const real* y, const real* z, std::size_t n, const GridGeometry& geometry,
+           const CellRange& range);
   // Orders the particles of each cell by `key` (ascending, keys distinct) in sorted_order().
   void order_cells_by(const std::int64_t* key);
-  // Builds every particle's list of neighbours j != i with |x_i - x_j|^2 < h^2.
-  void build_lists(const real* x, const real* y, const real* z, double h);
+  // Builds the lists of neighbours j != i with |x_i - x_j|^2 < h^2 of the particles i < listed
+  // (all of them by default; a rank lists its own particles, whose neighbours include ghosts).
+  void build_lists(const real* x, const real* y, const real* z, double h, std::size_t listed = SIZE_MAX);
 
   // The lists are followed by this many valid indices (0), so that a vector loop may load a
   // whole vector of indices past the end of a list and mask the extra lanes.
@@ -42,7 +70,8 @@ class NeighborGrid {
   std::span<const std::uint32_t> sorted_order() const { return {sorted_.data(), cell_.size()}; }
   const std::uint32_t* neighbors(std::size_t i) const { return list_.data() + offset_[i]; }
   std::uint32_t count(std::size_t i) const { return static_cast<std::uint32_t>(offset_[i + 1] - offset_[i]); }
-  std::size_t particle_count() const { return offset_.empty() ? 0 : offset_.size() - 1; }
+  std::size_t particle_count() const { return offset_.empty() ? 0 : offset_.size() - 1; }  // listed
+  std::size_t binned_count() const { return cell_.size(); }
 
   // The prelude of every pair loop: calls visit(j, dx, dy, dz, r2) for each neighbour j of
   // particle i, in list order, with (dx, dy, dz) = x_i - x_j and r2 its squared length.
@@ -58,7 +87,12 @@ class NeighborGrid {
   }
 
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
-  double cell_size() const { return cell_size_; }
+  // The binning: the whole domain's cells, the box of them binned (cells numbered x fastest
+  // within it), and each binned cell's first slot in sorted_order() (cell_count() + 1 entries).
+  const GridGeometry& geometry() const { return geometry_; }
+  const CellRange& range() const { return range_; }
+  const std::uint32_t* cell_starts() const { return cell_start_.data(); }
+  double cell_size() const { return geometry_.cell_size; }
   double mean_neighbors() const;
   // Whether the last build_lists took one pass (the lists fitted where the build before said).
   bool built_in_one_pass() const { return one_pass_; }
@@ -70,9 +104,9 @@ class NeighborGrid {
  private:
   std::size_t cell_of(real x, real y, real z) const;
 
-  double lo_[3] = {0, 0, 0};
-  double cell_size_ = 1;
-  long dims_[3] = {1, 1, 1};
+  GridGeometry geometry_;
+  CellRange range_;
+  long dims_[3] = {1, 1, 1};  // of the range
   std::vector<std::uint32_t> cell_;         // cell of each particle
   std::vector<std::uint32_t> cell_start_;   // first sorted slot of each cell (ncells + 1)
   std::vector<std::uint32_t> sorted_;       // particle indices, cell by cell, and kListPadding zeros

@@ -264,12 +264,20 @@ void SmoothingSums(const PairInput& in, const real* volume, const real* vx, cons
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <cmath>
+
+#include "engine/distributed/comm.hpp"
+
 namespace pbf {
 
-real uniform_mass(const real* m, std::size_t n) {
-  for (std::size_t i = 1; i < n; ++i)
-    if (m[i] != m[0]) return 0;
-  return n > 0 && m[0] > 0 ? m[0] : 0;
+real uniform_mass(const real* m, std::size_t n, bool across_ranks) {
+  real mine = n > 0 && m[0] > 0 ? m[0] : 0;
+  for (std::size_t i = 1; i < n && mine > 0; ++i)
+    if (m[i] != m[0]) mine = 0;
+  if (!across_ranks) return mine;
+  // A rank without particles has no say; one whose masses differ makes the answer 0.
+  const double lo = comm::min(n ? double(mine) : HUGE_VAL), hi = comm::max(n ? double(mine) : -HUGE_VAL);
+  return lo == hi && lo > 0 ? real(lo) : 0;
 }
 
 HWY_EXPORT(DensitySums);

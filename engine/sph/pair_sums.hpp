@@ -28,7 +28,7 @@ struct PairInput {
 };
 
 // The particles' common mass, or 0 when the masses differ.
-real uniform_mass(const real* m, std::size_t n);
+real uniform_mass(const real* m, std::size_t n, bool across_ranks = false);
 
 // rho_i = m_i W(0) + sum_j m_j W_ij (the fluid's share of the SPH density).
 void density_sums(const PairInput& in, real* rho);
