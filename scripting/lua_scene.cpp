@@ -222,7 +222,7 @@ int l_write_restart(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.write_restart");
   const std::string path = lua::path(L, 1, "pbf.write_restart: the path");
-  if (S.sim.particles().size() == 0) throw Error("pbf.write_restart: there are no particles to save");
+  if (S.sim.global_count() == 0) throw Error("pbf.write_restart: there are no particles to save");
   push_restart_summary(L, write_restart(S.sim, path));
   return 1;
 }
@@ -230,7 +230,7 @@ int l_write_restart(lua_State* L) {
 int l_read_restart(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.read_restart");
-  if (S.sim.particles().size() > 0)
+  if (S.sim.global_count() > 0)
     throw Error("pbf.read_restart replaces the scene: call it before creating any particle");
   push_restart_summary(L, read_restart(S.sim, lua::path(L, 1, "pbf.read_restart: the path")));
   return 1;

@@ -17,6 +17,7 @@ class Load : public Compute {
  public:
   Load(const std::string& id, const Params& p) : Compute(id, "load"), solid_(p.string("solid")), about_(p.vec3("about")) {}
   std::vector<std::string> names() const override { return {"fx", "fy", "fz", "tx", "ty", "tz"}; }
+  bool runs_distributed() const override { return true; }  // the solid's load is every rank's
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const SolidBody* body = nullptr;
     std::vector<std::string> names;

@@ -214,6 +214,11 @@ std::int64_t exclusive_sum(std::int64_t value) {
 }
 
 void write_file(const std::string& path, std::int64_t offset, std::span<const char> bytes) {
+  write_file(path, std::vector<FilePiece>{{offset, bytes}});
+}
+
+void write_file(const std::string& path, const std::vector<FilePiece>& pieces) {
+  if (!started) throw Error(fmt::format("internal: '{}' written by ranks without MPI", path));
   const std::string temporary = path + ".writing";
   auto check = [&](int code, const char* what) {
     int failed = code != MPI_SUCCESS;
@@ -228,17 +233,16 @@ void write_file(const std::string& path, std::int64_t offset, std::span<const ch
   check(MPI_File_open(MPI_COMM_WORLD, temporary.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file),
         "open for writing");
   int code = MPI_File_set_size(file, 0);
-  if (code == MPI_SUCCESS) {
-    // In pieces MPI's int counts can hold.
-    constexpr std::size_t kPiece = std::size_t(1) << 30;
-    const std::int64_t pieces = comm::max(static_cast<double>((bytes.size() + kPiece - 1) / kPiece));
-    for (std::int64_t p = 0; p < pieces && code == MPI_SUCCESS; ++p) {
-      const std::size_t first = std::min(bytes.size(), static_cast<std::size_t>(p) * kPiece);
-      const std::size_t count = std::min(kPiece, bytes.size() - first);
-      code = MPI_File_write_at_all(file, offset + static_cast<std::int64_t>(first), bytes.data() + first,
-                                   static_cast<int>(count), MPI_CHAR, MPI_STATUS_IGNORE);
+  // Each piece in parts MPI's int counts can hold.
+  constexpr std::size_t kPart = std::size_t(1) << 30;
+  for (const FilePiece& piece : pieces)
+    for (std::size_t first = 0; first < piece.bytes.size() && code == MPI_SUCCESS; first += kPart) {
+      const std::size_t count = std::min(kPart, piece.bytes.size() - first);
+      code = MPI_File_write_at(file, piece.offset + static_cast<std::int64_t>(first), piece.bytes.data() + first,
+                               static_cast<int>(count), MPI_CHAR, MPI_STATUS_IGNORE);
     }
-  }
+  const int synced = MPI_File_sync(file);  // on disk before the rename makes it the file
+  if (code == MPI_SUCCESS) code = synced;
   MPI_File_close(&file);
   check(code, "write");
   int renamed = 0;

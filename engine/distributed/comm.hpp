@@ -69,6 +69,12 @@ std::int64_t exclusive_sum(std::int64_t value);
 // file that rank 0 renames to `path` when all are done, so that a failed write leaves no cut
 // file behind. Throws naming the file when the file system refuses.
 void write_file(const std::string& path, std::int64_t offset, std::span<const char> bytes);
+// The same with several pieces a rank (each at its offset), flushed to disk before the rename.
+struct FilePiece {
+  std::int64_t offset;
+  std::span<const char> bytes;
+};
+void write_file(const std::string& path, const std::vector<FilePiece>& pieces);
 
 // Ends every rank at once, with this exit code (after this rank wrote its message).
 [[noreturn]] void abort(int code);

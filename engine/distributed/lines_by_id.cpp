@@ -6,23 +6,11 @@
 
 #include "engine/core/error.hpp"
 #include "engine/distributed/comm.hpp"
+#include "engine/distributed/id_blocks.hpp"
 
 namespace pbf {
 
 namespace {
-
-std::size_t block_begin(std::size_t total, int rank, int ranks) {
-  return static_cast<std::size_t>(static_cast<unsigned __int128>(total) * static_cast<unsigned>(rank) /
-                                  static_cast<unsigned>(ranks));
-}
-
-int block_of(std::size_t id, std::size_t total, int ranks) {
-  // The rank r with block_begin(r) <= id < block_begin(r + 1).
-  int r = static_cast<int>(static_cast<unsigned __int128>(id) * static_cast<unsigned>(ranks) / total);
-  while (r + 1 < ranks && block_begin(total, r + 1, ranks) <= id) ++r;
-  while (r > 0 && block_begin(total, r, ranks) > id) --r;
-  return r;
-}
 
 template <class T>
 void put(std::vector<char>& out, T value) {
@@ -42,7 +30,7 @@ void write_lines_by_id(const std::string& path, const std::string& head, std::si
     const std::size_t begin = k ? ends[k - 1] : 0, length = ends[k] - begin;
     if (ids[k] < 0 || static_cast<std::size_t>(ids[k]) >= total)
       throw Error(fmt::format("{}: particle id {} outside 0..{}", path, ids[k], total - 1));
-    auto& out = send[static_cast<std::size_t>(block_of(static_cast<std::size_t>(ids[k]), total, R))];
+    auto& out = send[static_cast<std::size_t>(id_block_of(static_cast<std::size_t>(ids[k]), total, R))];
     put(out, ids[k]);
     put(out, static_cast<std::int64_t>(length));
     out.insert(out.end(), text.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -51,7 +39,7 @@ void write_lines_by_id(const std::string& path, const std::string& head, std::si
   const std::vector<std::vector<char>> received = comm::all_to_all_bytes(send);
   send.clear();
   // This rank's block in id order.
-  const std::size_t first = block_begin(total, me, R), count = block_begin(total, me + 1, R) - first;
+  const std::size_t first = id_block_begin(total, me, R), count = id_block_begin(total, me + 1, R) - first;
   std::vector<const char*> line(count, nullptr);
   std::vector<std::int64_t> length(count, 0);
   std::size_t bytes = me == 0 ? head.size() : 0;

@@ -3,6 +3,10 @@
 // the whole run as an animation on the right time axis. Positions are the points; the
 // chosen fields are point data, in id order.
 //
+// A distributed run writes each frame as pieces, one per rank with its particles in id order
+// (frame_00003_R.vtu), and a parallel file that names them (frame_00003.pvtu), which the
+// collection lists instead.
+//
 // Solids go beside the frames as surfaces (.vtp), each written only when it has moved: out/
 // frame_*.vtu gives out/frame_solid_NAME.vtp for a surface that never moved (version 0) and
 // out/frame_solid_NAME_NNNNN.vtp (the frame number) for each new position of a moving one
@@ -21,6 +25,7 @@
 #include "engine/io/vtp.hpp"
 #include "engine/io/vtu.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -59,6 +64,8 @@ class DumpVtk : public Dump {
     if (stem_.empty()) stem_ = "frames";
     if (collection_.empty()) collection_ = (std::filesystem::path(pattern()).parent_path() / (stem_ + ".pvd")).string();
   }
+
+  bool runs_distributed() const override { return true; }  // a piece per rank and a .pvtu
 
   void init(Simulation& sim) override {
     check_surfaces_ = true;  // the pipeline may have changed since the last run
@@ -120,6 +127,29 @@ class DumpVtk : public Dump {
 
  private:
   void write_frame(Simulation& sim, const std::string& path, std::int64_t frame) override {
+    // A distributed run: each rank's particles in a piece of its own, tied together by a .pvtu
+    // (rank 0's), which the collection lists.
+    const std::string frame_file = sim.particles().distributed() ? write_pieces(sim, path) : write_whole(sim, path);
+
+    // The collection names files relative to its own directory, as ParaView expects.
+    const auto base = std::filesystem::path(collection_).parent_path();
+    auto relative = [&](const std::string& file) {
+      return std::filesystem::path(file).lexically_relative(base.empty() ? "." : base).string();
+    };
+    Frame& f = frames_.emplace_back(Frame{sim.time(), {relative(frame_file)}});
+    for (const SolidBody* solid : sim.solid_bodies())
+      f.files.push_back(relative(surface_file(*solid, std::filesystem::path(path).parent_path(), frame)));
+    check_surfaces_ = false;
+
+    if (!comm::root()) return;  // every rank keeps the same list; rank 0 writes it
+    std::vector<PvdDataSet> datasets;
+    for (const auto& fr : frames_)
+      for (std::size_t k = 0; k < fr.files.size(); ++k) datasets.push_back({fr.time, static_cast<int>(k), fr.files[k]});
+    write_pvd(collection_, datasets);
+  }
+
+  // One process: every particle, in id order.
+  std::string write_whole(Simulation& sim, const std::string& path) {
     const std::size_t n = sim.particles().size();
     values_.resize(fields().size());
     std::vector<VtuArray> arrays;
@@ -136,21 +166,49 @@ class DumpVtk : public Dump {
     position.resolve(sim);
     position.gather(sim, 0, points_);
     write_vtu(path, n, {"Points", 3, kRealType, points_.data()}, arrays);
+    return path;
+  }
 
-    // The collection names files relative to its own directory, as ParaView expects.
-    const auto base = std::filesystem::path(collection_).parent_path();
-    auto relative = [&](const std::string& file) {
-      return std::filesystem::path(file).lexically_relative(base.empty() ? "." : base).string();
+  // A distributed run: out/frame_00003.vtu becomes out/frame_00003.pvtu and the pieces
+  // out/frame_00003_R.vtu, one per rank, each with that rank's particles in id order.
+  std::string write_pieces(Simulation& sim, const std::string& path) {
+    sim.refresh_neighbors();  // derived fields read neighbours: the ghosts first (they move the arrays)
+    const auto& P = sim.particles();
+    const std::size_t n = P.size();
+    std::vector<std::uint32_t> by_id(n);
+    for (std::size_t i = 0; i < n; ++i) by_id[i] = static_cast<std::uint32_t>(i);
+    std::sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return P.ids()[a] < P.ids()[b]; });
+    auto ordered = [&](const std::vector<const real*>& columns, std::vector<real>& out) {
+      const std::size_t nc = columns.size();
+      out.resize(n * nc);
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t c = 0; c < nc; ++c) out[i * nc + c] = columns[c][by_id[i]];
     };
-    Frame& f = frames_.emplace_back(Frame{sim.time(), {relative(path)}});
-    for (const SolidBody* solid : sim.solid_bodies())
-      f.files.push_back(relative(surface_file(*solid, std::filesystem::path(path).parent_path(), frame)));
-    check_surfaces_ = false;
-
-    std::vector<PvdDataSet> datasets;
-    for (const auto& fr : frames_)
-      for (std::size_t k = 0; k < fr.files.size(); ++k) datasets.push_back({fr.time, static_cast<int>(k), fr.files[k]});
-    write_pvd(collection_, datasets);
+    values_.resize(fields().size());
+    std::vector<VtuArray> arrays;
+    for (std::size_t k = 0; k < fields().size(); ++k) {
+      if (fields().is_id(k)) {
+        ids_.resize(n);
+        for (std::size_t i = 0; i < n; ++i) ids_[i] = P.ids()[by_id[i]];
+        arrays.push_back({"id", 1, VtuType::Int64, ids_.data()});
+      } else {
+        ordered(fields().columns(sim, k), values_[k]);
+        arrays.push_back({fields().names()[k], fields().components(k), kRealType, values_[k].data()});
+      }
+    }
+    ordered({P.x(), P.y(), P.z()}, points_);
+    const std::filesystem::path whole(path);
+    const std::string stem = (whole.parent_path() / whole.stem()).string();
+    auto piece = [&](int rank) { return fmt::format("{}_{}.vtu", stem, rank); };
+    write_vtu(piece(comm::rank()), n, {"Points", 3, kRealType, points_.data()}, arrays);
+    const std::string parallel = stem + ".pvtu";
+    comm::barrier();  // every piece is there before the file that names them
+    if (comm::root()) {
+      std::vector<std::string> pieces;
+      for (int r = 0; r < comm::ranks(); ++r) pieces.push_back(std::filesystem::path(piece(r)).filename().string());
+      write_pvtu(parallel, kRealType, arrays, pieces);
+    }
+    return parallel;
   }
 
   // The file that holds the solid's surface now: the one last written, unless the surface
@@ -168,7 +226,7 @@ class DumpVtk : public Dump {
     const std::string file = (dir / (version == 0 && first ? fmt::format("{}_solid_{}.vtp", stem_, name)
                                                            : fmt::format("{}_solid_{}_{:05d}.vtp", stem_, name, frame)))
                                  .string();
-    write_vtp(file, solid.surface());
+    if (comm::root()) write_vtp(file, solid.surface());  // a distributed run's are rank 0's to write
     if (first) it = surfaces_.insert(surfaces_.end(), Surface{});
     *it = Surface{name, version, fingerprint(solid.surface()), file};
     return file;

@@ -14,6 +14,7 @@
 #include "engine/io/restart.hpp"
 #include "engine/output/output_schedule.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -27,6 +28,7 @@ class PeriodicRestart : public Fix {
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
   Role role() const override { return Role::output; }
+  bool runs_distributed() const override { return true; }  // every rank writes its part of one file
 
   void init(Simulation& sim) override {
     path_.create_directory();
@@ -74,7 +76,7 @@ class PeriodicRestart : public Fix {
     // Only now that the new file is complete, the oldest go.
     while (written_.size() > static_cast<std::size_t>(keep_)) {
       std::error_code ec;
-      if (written_.front().second != path) std::filesystem::remove(written_.front().second, ec);
+      if (written_.front().second != path && comm::root()) std::filesystem::remove(written_.front().second, ec);
       written_.erase(written_.begin());
     }
   }

@@ -34,6 +34,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/fixes/solid_shape.hpp"
 #include "engine/geometry/mesh_file.hpp"
@@ -76,6 +77,8 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     return {Stage::external_forces, Stage::constraints, Stage::velocity_update, Stage::end_of_step};
   }
   Role role() const override { return Role::boundary; }
+  // Each particle meets the wall on its own; the load is summed over every rank's.
+  bool runs_distributed() const override { return true; }
   DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
   const SolidBody* solid_body() const override { return this; }
   const std::string& name() const override { return id(); }
@@ -168,8 +171,18 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
         ++moved;
       }
     }
-    const std::size_t removed = P.remove(drop);
-    if (P.size() == 0)
+    // Once the particles are distributed (a later run) none may be left out: the ids would
+    // have to be renumbered across the ranks.
+    if (P.distributed()) {
+      const auto inside = comm::sum(static_cast<std::int64_t>(std::count(drop.begin(), drop.end(), 1)));
+      if (inside > 0)
+        throw Error(fmt::format("solid '{}': {} particles lie inside it or nearer than its contact distance, and a "
+                                "distributed run cannot leave out particles after its first run: add the solid "
+                                "before the first run",
+                                id(), inside));
+    }
+    const std::size_t removed = P.distributed() ? 0 : P.remove(drop);
+    if (sim.global_count() == 0)
       throw Error(fmt::format("solid '{}' ({} it) leaves no particle: every one was created inside the wall", id(),
                               fluid_inside_ ? "fluid inside" : "fluid outside"));
     if (removed > 0)
@@ -360,12 +373,13 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     const real *px = push_[0].data(), *py = push_[1].data(), *pz = push_[2].data();
     const double inv_dt = 1 / sim.timestep();
     const std::size_t n = P.size();
-    load_[0] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(px[i]); });
-    load_[1] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(py[i]); });
-    load_[2] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(pz[i]); });
-    load_[3] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(y[i] * pz[i] - z[i] * py[i]); });
-    load_[4] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(z[i] * px[i] - x[i] * pz[i]); });
-    load_[5] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(x[i] * py[i] - y[i] * px[i]); });
+    const bool ranks = P.distributed();
+    load_[0] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(px[i]); }, ranks);
+    load_[1] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(py[i]); }, ranks);
+    load_[2] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(pz[i]); }, ranks);
+    load_[3] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(y[i] * pz[i] - z[i] * py[i]); }, ranks);
+    load_[4] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(z[i] * px[i] - x[i] * pz[i]); }, ranks);
+    load_[5] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(x[i] * py[i] - y[i] * px[i]); }, ranks);
   }
 
  private:

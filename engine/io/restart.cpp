@@ -17,6 +17,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/io/bytes.hpp"
+#include "engine/io/restart_format.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/sph/resolution.hpp"
 
@@ -26,11 +27,16 @@ namespace {
 
 constexpr unsigned char kMagic[8] = {0x89, 'P', 'B', 'F', 'R', 'S', 'T', '\n'};
 constexpr std::uint32_t kByteOrderMark = 0x01020304, kSwappedByteOrderMark = 0x04030201;
-constexpr std::size_t kHeaderBytes = 32;
 
-std::uint32_t checksum(const unsigned char* data, std::size_t size) {
+}  // namespace
+
+std::uint32_t restart_checksum(const unsigned char* data, std::size_t size) {
   return static_cast<std::uint32_t>(crc32_z(crc32_z(0L, Z_NULL, 0), data, size));
 }
+
+namespace {
+
+std::uint32_t checksum(const unsigned char* data, std::size_t size) { return restart_checksum(data, size); }
 
 // The particle fields in `real_bytes` per value: this build's precision, or the other one.
 template <class Value>
@@ -42,8 +48,9 @@ void put_values(ByteWriter& w, const real* values, std::uint64_t n) {
   }
 }
 
-std::vector<unsigned char> payload(const Simulation& sim, std::uint32_t real_bytes) {
-  ByteWriter w;
+}  // namespace
+
+void put_restart_scene(ByteWriter& w, const Simulation& sim) {
   const Domain& d = sim.domain();
   w.put_array(d.lo, 3);
   w.put_array(d.hi, 3);
@@ -54,14 +61,48 @@ std::vector<unsigned char> payload(const Simulation& sim, std::uint32_t real_byt
   w.put(clock.step);
   w.put(clock.step_base);
   w.put(clock.time_base);
+}
 
+std::vector<FieldId> restart_fields(const Particles& P) {
+  std::vector<FieldId> saved;
+  for (FieldId f : P.fields())
+    if (P.spec(f).restart) saved.push_back(f);
+  return saved;
+}
+
+void put_restart_states(ByteWriter& w, const Simulation& sim) {
+  w.put(static_cast<std::uint32_t>(sim.fixes().size()));
+  for (const auto& fix : sim.fixes()) {
+    ByteWriter state;
+    fix->save_state(state);
+    w.put_string(fix->id());
+    w.put_string(fix->style());
+    w.put<std::uint64_t>(state.bytes().size());
+    w.append(state.bytes().data(), state.bytes().size());
+  }
+}
+
+std::vector<unsigned char> restart_header(std::uint32_t real_bytes, std::uint32_t crc, std::uint64_t size) {
+  ByteWriter header;
+  header.put_array(kMagic, 8);
+  header.put(kRestartVersion);
+  header.put(kByteOrderMark);
+  header.put(real_bytes);
+  header.put(crc);
+  header.put<std::uint64_t>(size);
+  return header.bytes();
+}
+
+namespace {
+
+std::vector<unsigned char> payload(const Simulation& sim, std::uint32_t real_bytes) {
+  ByteWriter w;
+  put_restart_scene(w, sim);
   const Particles& P = sim.particles();
   const std::uint64_t n = P.size();
   w.put(n);
   w.put_array(P.ids(), n);
-  std::vector<FieldId> saved;
-  for (FieldId f : P.fields())
-    if (P.spec(f).restart) saved.push_back(f);
+  const std::vector<FieldId> saved = restart_fields(P);
   w.put(static_cast<std::uint32_t>(saved.size()));
   for (FieldId f : saved) {
     w.put_string(P.spec(f).name);
@@ -74,15 +115,7 @@ std::vector<unsigned char> payload(const Simulation& sim, std::uint32_t real_byt
     }
   }
 
-  w.put(static_cast<std::uint32_t>(sim.fixes().size()));
-  for (const auto& fix : sim.fixes()) {
-    ByteWriter state;
-    fix->save_state(state);
-    w.put_string(fix->id());
-    w.put_string(fix->style());
-    w.put<std::uint64_t>(state.bytes().size());
-    w.append(state.bytes().data(), state.bytes().size());
-  }
+  put_restart_states(w, sim);
   return w.bytes();
 }
 
@@ -188,20 +221,15 @@ void check_header(ByteReader& header, std::size_t file_size, const std::string& 
 RestartSummary write_restart(Simulation& sim, const std::string& path, std::uint32_t real_bytes) {
   if (real_bytes != 4 && real_bytes != 8)
     throw Error(fmt::format("write_restart: a real has 4 or 8 bytes, not {}", real_bytes));
+  if (sim.particles().distributed()) return write_restart_distributed(sim, path, real_bytes);
   const double start = omp_get_wtime();
   const std::vector<unsigned char> data = payload(sim, real_bytes);
-  ByteWriter header;
-  header.put_array(kMagic, 8);
-  header.put(kRestartVersion);
-  header.put(kByteOrderMark);
-  header.put(real_bytes);
-  header.put(checksum(data.data(), data.size()));
-  header.put<std::uint64_t>(data.size());
+  const std::vector<unsigned char> header = restart_header(real_bytes, checksum(data.data(), data.size()), data.size());
 
   const std::string tmp = path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (fd < 0) throw Error(fmt::format("cannot write restart '{}': {}", tmp, std::strerror(errno)));
-  bool ok = write_all(fd, header.bytes().data(), header.bytes().size()) && write_all(fd, data.data(), data.size());
+  bool ok = write_all(fd, header.data(), header.size()) && write_all(fd, data.data(), data.size());
   const int write_errno = errno;
   ok = ::fsync(fd) == 0 && ok;  // on disk before the rename makes it the newest restart
   ok = ::close(fd) == 0 && ok;

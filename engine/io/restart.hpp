@@ -9,8 +9,10 @@
 //   fields (count u32, then name, components u32, N reals per component); the fixes' saved
 //   states (count u32, then id, style, size u64, bytes). Strings are u64 length + bytes.
 //
-// Particles are saved in memory order, so the neighbour lists, and with them every sum,
-// come out in the same order after a read.
+// One process saves the particles in memory order, the ranks of a distributed run in id order
+// (engine/distributed/restart_write.hpp); neither order changes what a continued run computes,
+// as the neighbour lists order particles by cell and id. Any build reads either, on one process
+// or on any number of ranks (every rank reads the file; each keeps its part at the next run).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -42,5 +44,8 @@ RestartSummary write_restart(Simulation& sim, const std::string& path, std::uint
 // precision is converted, with a warning (the continuation is then not bit for bit); a value
 // beyond single precision is an error.
 RestartSummary read_restart(Simulation& sim, const std::string& path);
+
+// The distributed run's writer (engine/distributed/restart_write.cpp), which write_restart calls.
+RestartSummary write_restart_distributed(Simulation& sim, const std::string& path, std::uint32_t real_bytes);
 
 }  // namespace pbf

@@ -67,6 +67,24 @@ void write_vtu(const std::string& path, std::size_t n, const VtuArray& points,
   out.commit();
 }
 
+void write_pvtu(const std::string& path, VtuType points, const std::vector<VtuArray>& point_data,
+                const std::vector<std::string>& pieces) {
+  std::string text =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n    <PPointData>\n";
+  for (const auto& a : point_data)
+    text += fmt::format("      <PDataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\"/>\n", type_name(a.type),
+                        xml_escape(a.name), a.components);
+  text += fmt::format("    </PPointData>\n    <PPoints>\n      <PDataArray type=\"{}\" NumberOfComponents=\"3\"/>\n"
+                      "    </PPoints>\n",
+                      type_name(points));
+  for (const auto& piece : pieces) text += fmt::format("    <Piece Source=\"{}\"/>\n", xml_escape(piece));
+  text += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  AtomicFile out(path);
+  out.write(text);
+  out.commit();
+}
+
 void write_pvd(const std::string& path, const std::vector<PvdDataSet>& datasets) {
   const auto dir = std::filesystem::absolute(path).parent_path();
   std::string text =

@@ -31,6 +31,12 @@ struct VtuArray {
 void write_vtu(const std::string& path, std::size_t n, const VtuArray& points,
                const std::vector<VtuArray>& point_data);
 
+// The parallel frame (.pvtu) of a distributed run: the arrays' names, types and components
+// (data unused) and the pieces' .vtu files, relative to the .pvtu's directory. ParaView reads
+// the pieces as one data set.
+void write_pvtu(const std::string& path, VtuType points, const std::vector<VtuArray>& point_data,
+                const std::vector<std::string>& pieces);
+
 // One DataSet of a collection: the file that holds `part` at `time`. ParaView shows the
 // parts of one time together (part 0 the particles, then one part per solid).
 struct PvdDataSet {

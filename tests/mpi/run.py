@@ -6,13 +6,18 @@
 Cases:
   identical   tests/mpi/dambreak.lua on 1 process, 2 and 3 ranks: every text frame, the
               probes' CSV and the thermo CSV have the same bytes (the fluid crosses every
-              rank boundary).
+              rank boundary), and the VTK frames' pieces hold the rows of the 1-process .vtu.
   identical_wcsph  scenarios/dambreak.lua with WCSPH (leapfrog, wcsph, sph_viscosity, cfl)
               likewise: frames and thermo CSV (the front, the gauge at the back wall).
+  identical_solid  scenarios/spheric_dambreak.lua at 5 cm (PBF, the box obstacle across the
+              ranks' boundaries, its load in thermo, pressure probes and gauges): probes.csv and
+              thermo.csv.
+  restart     a restart written on 3 ranks, continued on 2 ranks and on 1 process: the later
+              frames are those of the run that never stopped.
   script_error  an error every rank meets (an unknown style): one message, exit code 1.
   rank_error  an error only rank 1 meets, while the others wait in a collective call: its
               message, naming the rank, once; exit code 1; no rank left running.
-  refused     a style not yet written for several ranks (solid): refused by name, exit code 1.
+  refused     a style not yet written for several ranks (dump/image): refused by name, exit code 1.
 
 Open MPI is run as the CI runs it: as root it needs OMPI_ALLOW_RUN_AS_ROOT(_CONFIRM); in
 containers the vader transport's single-copy mechanism is off; --oversubscribe lets 3 ranks
@@ -51,7 +56,7 @@ def fail(message):
     sys.exit(1)
 
 
-def same_outputs(args, work, script, variables, files):
+def same_outputs(args, work, script, variables, files, least_frames=5):
     """Runs at 1, 2 and 3 ranks; fails unless the text frames and `files` are the same bytes.
     Returns the 1-rank output directory and its frames."""
     outputs = {}
@@ -63,8 +68,8 @@ def same_outputs(args, work, script, variables, files):
         outputs[ranks] = out
         print(f"{ranks} rank(s):", [line.strip() for line in result.stdout.splitlines() if "ranks;" in line])
     frames = sorted(f for f in os.listdir(outputs[1]) if f.endswith(".txt"))
-    if len(frames) < 5:
-        fail(f"expected at least 5 frames, found {frames}")
+    if len(frames) < least_frames:
+        fail(f"expected at least {least_frames} frames, found {frames}")
     for ranks in (2, 3):
         for name in frames + files:
             a, b = os.path.join(outputs[1], name), os.path.join(outputs[ranks], name)
@@ -73,15 +78,48 @@ def same_outputs(args, work, script, variables, files):
     return outputs[1], frames
 
 
+def vtk_rows(directory, frame):
+    """{id: (velocity, density, position)} of one VTK frame: the .vtu, or the .pvtu's pieces."""
+    sys.path.insert(0, os.path.join(HERE, ".."))
+    import check_vtu  # the engine-independent reader of tests/check_vtu.py
+    import xml.etree.ElementTree as ET
+    whole = os.path.join(directory, "vtk", f"frame_{frame:05d}.vtu")
+    if os.path.exists(whole):
+        files = [whole]
+    else:
+        parallel = os.path.join(directory, "vtk", f"frame_{frame:05d}.pvtu")
+        pieces = ET.parse(parallel).getroot().findall("PUnstructuredGrid/Piece")
+        files = [os.path.join(directory, "vtk", p.get("Source")) for p in pieces]
+    rows = {}
+    for path in files:
+        n, arrays = check_vtu.read_vtu(path)
+        for i in range(n):
+            key = arrays["id"][2][i]
+            if key in rows:
+                fail(f"{path}: particle {key} in two pieces")
+            rows[key] = tuple(tuple(arrays[name][2][i * c:(i + 1) * c])
+                              for name, c in (("velocity", 3), ("density", 1), ("Points", 3)))
+    return rows
+
+
 def identical(args, work):
     out, frames = same_outputs(args, work, os.path.join(HERE, "dambreak.lua"), {}, ["thermo.csv", "probes.csv"])
+    for frame in range(len(frames)):
+        expected = vtk_rows(out, frame)
+        for ranks in (2, 3):
+            if vtk_rows(os.path.join(work, f"r{ranks}"), frame) != expected:
+                fail(f"VTK frame {frame}: the pieces of {ranks} ranks hold other rows than the 1-process file")
+    with open(os.path.join(work, "r3", "vtk", "frame.pvd")) as f:
+        if "frame_00001.pvtu" not in f.read():
+            fail("the collection of 3 ranks does not list the parallel frames")
     # The fluid reached the far wall: past every initial cut (all inside the column, x < 0.3).
     with open(os.path.join(out, frames[-1])) as f:
         rows = [line.split() for line in f if line[0].isdigit() and " " in line]
     farthest = max(float(r[1]) for r in rows)
     if farthest < 0.6:
         fail(f"the fluid reached only x = {farthest}: it did not cross the ranks' boundaries")
-    print(f"{len(frames)} frames, probes.csv and thermo.csv identical at 1, 2 and 3 ranks; front at x = "
+    print(f"{len(frames)} frames, probes.csv, thermo.csv and the VTK frames' rows identical at 1, 2 and 3 ranks; "
+          f"front at x = "
           f"{farthest:.3f} m")
 
 
@@ -90,6 +128,35 @@ def identical_wcsph(args, work):
     variables = {"solver": "wcsph", "particles": 1500, "t_end": 0.15, "interval": 0.03, "restart_interval": 0}
     _, frames = same_outputs(args, work, scenario, variables, ["thermo.csv"])
     print(f"WCSPH: {len(frames)} frames and thermo.csv identical at 1, 2 and 3 ranks")
+
+
+def identical_solid(args, work):
+    scenario = os.path.join(HERE, "..", "..", "scenarios", "spheric_dambreak.lua")
+    variables = {"spacing": 0.05, "t_end": 0.6}
+    same_outputs(args, work, scenario, variables, ["probes.csv", "thermo.csv"], least_frames=0)
+    print("SPHERIC (a box obstacle, its load, pressure probes and gauges): probes.csv and thermo.csv identical at "
+          "1, 2 and 3 ranks")
+
+
+def restart(args, work):
+    """A restart written on 3 ranks continues on 2, and on 1 process, as the run never stopped."""
+    script = os.path.join(HERE, "dambreak.lua")
+    saved = os.path.join(work, "at120.restart")
+    runs = [(1, {"out": os.path.join(work, "straight")}),
+            (3, {"out": os.path.join(work, "first"), "steps": 120, "save": saved}),
+            (2, {"out": os.path.join(work, "on2"), "read": saved}),
+            (1, {"out": os.path.join(work, "on1"), "read": saved})]
+    for ranks, variables in runs:
+        result = run(args, ranks, script, variables, work)
+        if result.returncode != 0:
+            fail(f"{ranks} rank(s) with {variables}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+    later = [f"f_{k:05d}.txt" for k in (3, 4, 5)]  # steps 150, 200, 250
+    for name in later:
+        for where in ("on2", "on1"):
+            a, b = os.path.join(work, "straight", name), os.path.join(work, where, name)
+            if not os.path.exists(b) or not filecmp.cmp(a, b, shallow=False):
+                fail(f"{name} of the run continued {where} differs from the run that never stopped")
+    print(f"written on 3 ranks at step 120, continued on 2 and on 1: {', '.join(later)} identical to the straight run")
 
 
 def expect_failure(result, needle, name):
@@ -136,11 +203,11 @@ pbf.run(1000000)
 
 
 def refused(args, work):
-    path = small_scene(work, "solid.lua", """pbf.fix("pbf", "pbf", {})
-pbf.fix("ball", "solid", {shape = "sphere", center = {0.8, 0.8, 0.8}, radius = 0.1})
+    path = small_scene(work, "image.lua", """pbf.fix("pbf", "pbf", {})
+pbf.fix("pictures", "dump/image", {path = "image_*.png", every = 1})
 pbf.run(1)
 """)
-    expect_failure(run(args, 2, path, {}, work), "fix 'ball' (solid) does not run on several MPI ranks yet",
+    expect_failure(run(args, 2, path, {}, work), "fix 'pictures' (dump/image) does not run on several MPI ranks yet",
                    "refused")
 
 
@@ -149,7 +216,8 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_wcsph", "script_error", "rank_error", "refused"])
+                        choices=["identical", "identical_wcsph", "identical_solid", "restart", "script_error",
+                                 "rank_error", "refused"])
     args = parser.parse_args()
     args.binary = os.path.abspath(args.binary)
     with tempfile.TemporaryDirectory() as work:
