@@ -2,6 +2,7 @@
 // LAMMPS's dump image does: shaded spheres coloured by a field, a labelled colour bar, the
 // domain's edges, the simulated time. Rendering is parallel; its cost is this fix's line of
 // the timing table.
+#include "engine/distributed/comm.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/output/dump.hpp"
 #include "engine/render/particle_images.hpp"
@@ -13,6 +14,7 @@ namespace {
 class DumpImage : public Dump {
  public:
   DumpImage(const std::string& id, const Params& p) : Dump(id, "dump/image", p), images_(p) {}
+  bool runs_distributed() const override { return true; }  // the particles gathered on rank 0
 
   void init(Simulation& sim) override {
     images_.init(sim);
@@ -21,7 +23,8 @@ class DumpImage : public Dump {
 
  private:
   void write_frame(Simulation& sim, const std::string& path, std::int64_t) override {
-    write_png(path, images_.width(), images_.height(), images_.render(sim));
+    const auto& rgb = images_.render(sim);  // every rank: a distributed run gathers on rank 0
+    if (comm::root()) write_png(path, images_.width(), images_.height(), rgb);
   }
 
   ParticleImages images_;

@@ -16,6 +16,7 @@
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/output/path_pattern.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/render/particle_images.hpp"
 #include "engine/output/output_schedule.hpp"
 #include "engine/core/simulation.hpp"
@@ -66,18 +67,19 @@ class DumpMovie : public Fix {
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
   Role role() const override { return Role::output; }
+  bool runs_distributed() const override { return true; }  // the particles gathered on rank 0, its ffmpeg
 
   void init(Simulation& sim) override {
     images_.init(sim);
-    if (!pipe_) open();
+    if (!pipe_ && comm::root()) open();
     schedule_.start(sim, fmt::format("fix '{}' ({})", id(), style()));
     end_of_step(sim);
   }
 
   void end_of_step(Simulation& sim) override {
     if (!schedule_.due(sim)) return;
-    const auto& rgb = images_.render(sim);
-    if (std::fwrite(rgb.data(), 1, rgb.size(), pipe_) != rgb.size())
+    const auto& rgb = images_.render(sim);  // every rank: a distributed run gathers on rank 0
+    if (pipe_ && std::fwrite(rgb.data(), 1, rgb.size(), pipe_) != rgb.size())
       throw Error(fmt::format("ffmpeg stopped taking frames for '{}' ({}); see its message above", path_,
                               std::strerror(errno)));
     schedule_.done(sim);

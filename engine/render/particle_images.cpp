@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -66,7 +68,15 @@ void ParticleImages::init(Simulation& sim) {
   renderer_.emplace(spec_);
 }
 
-const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
+// The value a particle is coloured by: the field, or a vector field's magnitude.
+double ParticleImages::colour_value(const real* values, int components) {
+  double s = 0;
+  for (int c = 0; c < components; ++c) s += double(values[c]) * double(values[c]);
+  return components == 1 ? double(values[0]) : std::sqrt(s);
+}
+
+// Every particle's position and colour value in id order, on this process.
+std::size_t ParticleImages::collect(Simulation& sim) {
   const std::size_t n = sim.particles().size();
   color_.gather(sim, 0, values_);
   DumpFields position(Names{"position"});
@@ -74,10 +84,50 @@ const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
   position.gather(sim, 0, positions_);
   const int nc = color_.components(0);
   scalar_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    double s = 0;
-    for (int c = 0; c < nc; ++c) s += double(values_[i * nc + c]) * double(values_[i * nc + c]);
-    scalar_[i] = nc == 1 ? double(values_[i]) : std::sqrt(s);
+  for (std::size_t i = 0; i < n; ++i) scalar_[i] = colour_value(&values_[i * nc], nc);
+  return n;
+}
+
+// A distributed run: every rank's particles gathered on rank 0, in id order (one picture, the
+// same as one process draws). Returns the count on rank 0, 0 elsewhere.
+std::size_t ParticleImages::collect_on_root(Simulation& sim) {
+  sim.refresh_neighbors();  // a derived colour reads neighbours: the ghosts first (they move the arrays)
+  const auto& P = sim.particles();
+  const std::vector<const real*> columns = color_.columns(sim, 0);
+  struct Record {
+    std::int64_t id;
+    real x, y, z;
+    double value;
+  };
+  std::vector<Record> mine(P.size());
+  std::vector<real> v(columns.size());
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    for (std::size_t c = 0; c < columns.size(); ++c) v[c] = columns[c][i];
+    mine[i] = {P.ids()[i], P.x()[i], P.y()[i], P.z()[i], colour_value(v.data(), static_cast<int>(v.size()))};
+  }
+  const auto gathered = comm::gather_bytes(
+      std::span<const char>(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(Record)));
+  if (!comm::root()) return 0;
+  const std::size_t n = sim.global_count();
+  positions_.assign(3 * n, 0);
+  scalar_.assign(n, 0);
+  for (const auto& bytes : gathered)
+    for (std::size_t at = 0; at + sizeof(Record) <= bytes.size(); at += sizeof(Record)) {
+      Record r;
+      std::memcpy(&r, bytes.data() + at, sizeof r);
+      const auto i = static_cast<std::size_t>(r.id);
+      positions_[3 * i] = r.x, positions_[3 * i + 1] = r.y, positions_[3 * i + 2] = r.z;
+      scalar_[i] = r.value;
+    }
+  return n;
+}
+
+const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
+  const bool ranks = sim.particles().distributed();
+  const std::size_t n = ranks ? collect_on_root(sim) : collect(sim);
+  if (ranks && !comm::root()) {
+    rgb_.clear();
+    return rgb_;
   }
   double lo = min_, hi = max_;
   if (lo == hi) {  // this frame's range

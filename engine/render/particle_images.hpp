@@ -20,12 +20,17 @@ class ParticleImages {
 
   // In the fix's init: checks the colour field, picks the sphere radius if not given.
   void init(Simulation& sim);
-  // Renders the current state; the returned buffer is width * height * 3 bytes, RGB.
+  // Renders the current state; the returned buffer is width * height * 3 bytes, RGB. In a
+  // distributed run every rank calls it (the particles are gathered on rank 0) and only rank
+  // 0's buffer holds the picture (the others' are empty).
   const std::vector<unsigned char>& render(Simulation& sim);
   int width() const { return spec_.width; }
   int height() const { return spec_.height; }
 
  private:
+  static double colour_value(const real* values, int components);
+  std::size_t collect(Simulation& sim);
+  std::size_t collect_on_root(Simulation& sim);
   ImageSpec spec_;
   std::optional<ImageRenderer> renderer_;
   DumpFields color_;

@@ -8,7 +8,8 @@ Cases:
               probes' CSV and the thermo CSV have the same bytes (the fluid crosses every
               rank boundary), and the VTK frames' pieces hold the rows of the 1-process .vtu.
   identical_wcsph  scenarios/dambreak.lua with WCSPH (leapfrog, wcsph, sph_viscosity, cfl)
-              likewise: frames and thermo CSV (the front, the gauge at the back wall).
+              likewise: frames, dump/image's pictures and the thermo CSV (the front, the
+              gauge at the back wall).
   identical_solid  scenarios/spheric_dambreak.lua at 5 cm (PBF, the box obstacle across the
               ranks' boundaries, its load in thermo, pressure probes and gauges): probes.csv and
               thermo.csv.
@@ -17,7 +18,8 @@ Cases:
   script_error  an error every rank meets (an unknown style): one message, exit code 1.
   rank_error  an error only rank 1 meets, while the others wait in a collective call: its
               message, naming the rank, once; exit code 1; no rank left running.
-  refused     a style not yet written for several ranks (dump/image): refused by name, exit code 1.
+  refused     a style not yet written for several ranks (the per-particle compute density):
+              refused by name, exit code 1.
 
 Open MPI is run as the CI runs it: as root it needs OMPI_ALLOW_RUN_AS_ROOT(_CONFIRM); in
 containers the vader transport's single-copy mechanism is off; --oversubscribe lets 3 ranks
@@ -57,8 +59,9 @@ def fail(message):
 
 
 def same_outputs(args, work, script, variables, files, least_frames=5):
-    """Runs at 1, 2 and 3 ranks; fails unless the text frames and `files` are the same bytes.
-    Returns the 1-rank output directory and its frames."""
+    """Runs at 1, 2 and 3 ranks; fails unless every file the 1-process run wrote in its output
+    directory (text frames, CSVs, pictures; not its subdirectories) has the same bytes in the
+    others', and `files` are among them. Returns the 1-process output directory and its frames."""
     outputs = {}
     for ranks in (1, 2, 3):
         out = os.path.join(work, f"r{ranks}")
@@ -70,8 +73,12 @@ def same_outputs(args, work, script, variables, files, least_frames=5):
     frames = sorted(f for f in os.listdir(outputs[1]) if f.endswith(".txt"))
     if len(frames) < least_frames:
         fail(f"expected at least {least_frames} frames, found {frames}")
+    written = sorted(f for f in os.listdir(outputs[1]) if os.path.isfile(os.path.join(outputs[1], f)))
+    for name in files:
+        if name not in written:
+            fail(f"the 1-process run wrote no {name}")
     for ranks in (2, 3):
-        for name in frames + files:
+        for name in written:
             a, b = os.path.join(outputs[1], name), os.path.join(outputs[ranks], name)
             if not os.path.exists(b) or not filecmp.cmp(a, b, shallow=False):
                 fail(f"{name} differs between 1 process and {ranks} ranks")
@@ -125,9 +132,10 @@ def identical(args, work):
 
 def identical_wcsph(args, work):
     scenario = os.path.join(HERE, "..", "..", "scenarios", "dambreak.lua")
-    variables = {"solver": "wcsph", "particles": 1500, "t_end": 0.15, "interval": 0.03, "restart_interval": 0}
-    _, frames = same_outputs(args, work, scenario, variables, ["thermo.csv"])
-    print(f"WCSPH: {len(frames)} frames and thermo.csv identical at 1, 2 and 3 ranks")
+    variables = {"solver": "wcsph", "particles": 1500, "t_end": 0.15, "interval": 0.03, "restart_interval": 0,
+                 "images": 0.05}
+    _, frames = same_outputs(args, work, scenario, variables, ["thermo.csv", "image_00003.png"])
+    print(f"WCSPH: {len(frames)} frames, the pictures and thermo.csv identical at 1, 2 and 3 ranks")
 
 
 def identical_solid(args, work):
@@ -203,11 +211,11 @@ pbf.run(1000000)
 
 
 def refused(args, work):
-    path = small_scene(work, "image.lua", """pbf.fix("pbf", "pbf", {})
-pbf.fix("pictures", "dump/image", {path = "image_*.png", every = 1})
+    path = small_scene(work, "density.lua", """pbf.fix("pbf", "pbf", {})
+pbf.compute("rho", "density")
 pbf.run(1)
 """)
-    expect_failure(run(args, 2, path, {}, work), "fix 'pictures' (dump/image) does not run on several MPI ranks yet",
+    expect_failure(run(args, 2, path, {}, work), "compute 'rho' (density) does not run on several MPI ranks yet",
                    "refused")
 
 
