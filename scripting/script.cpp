@@ -97,7 +97,7 @@ int l_value(lua_State* L) {
   Compute* c = S.sim.find_compute(id);
   if (!c) throw Error(fmt::format("pbf.value: no compute with id '{}'", id));
   if (S.sim.global_count() == 0) throw Error(fmt::format("pbf.value('{}'): there are no particles yet", id));
-  if (S.sim.particles().distributed() && (c->per_particle() || !c->runs_distributed()))
+  if (S.sim.particles().distributed() && !c->runs_distributed())
     throw Error(fmt::format("pbf.value('{}'): compute '{}' ({}) does not run on several MPI ranks yet", id, id,
                             c->style()));
   std::vector<double> v;

@@ -2,6 +2,7 @@
 // density field (summed or integrated), else the SPH sum with walls.
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -13,12 +14,16 @@ class Density : public Compute {
   std::vector<std::string> names() const override { return {}; }
   void evaluate(Simulation&, std::vector<double>& values) override { values.clear(); }
   bool per_particle() const override { return true; }
+  // In a distributed run every rank gets every particle's value (a table of all of them).
+  bool runs_distributed() const override { return true; }
   void evaluate_per_particle(Simulation& sim, std::vector<double>& by_id) override {
     const real* rho = sim.solver_density();
     const auto* ids = sim.particles().ids();
     const std::size_t n = sim.particles().size();
-    by_id.assign(n, 0.0);
+    by_id.assign(sim.global_count(), 0.0);
     for (std::size_t i = 0; i < n; ++i) by_id[static_cast<std::size_t>(ids[i])] = rho[i];
+    // Each value is one rank's, the others add 0: the sum is that value, exactly.
+    if (sim.particles().distributed()) comm::sum(std::span<double>(by_id));
   }
 };
 

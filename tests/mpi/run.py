@@ -18,8 +18,8 @@ Cases:
   script_error  an error every rank meets (an unknown style): one message, exit code 1.
   rank_error  an error only rank 1 meets, while the others wait in a collective call: its
               message, naming the rank, once; exit code 1; no rank left running.
-  refused     a style not yet written for several ranks (the per-particle compute density):
-              refused by name, exit code 1.
+  per_particle  pbf.value of the per-particle density, printed by the script (once: print is
+              rank 0's): the same line at 1, 2 and 3 ranks.
 
 Open MPI is run as the CI runs it: as root it needs OMPI_ALLOW_RUN_AS_ROOT(_CONFIRM); in
 containers the vader transport's single-copy mechanism is off; --oversubscribe lets 3 ranks
@@ -210,13 +210,24 @@ pbf.run(1000000)
         fail("rank_error: the message does not name rank 1")
 
 
-def refused(args, work):
-    path = small_scene(work, "density.lua", """pbf.fix("pbf", "pbf", {})
+def per_particle(args, work):
+    path = small_scene(work, "values.lua", """pbf.fix("gravity", "gravity", {acceleration = {0, 0, -9.81}})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
 pbf.compute("rho", "density")
-pbf.run(1)
+pbf.run(30)
+local rho = pbf.value("rho")
+print(#rho, string.format("%.17g %.17g %.17g", rho[1], rho[500], rho[#rho]))
 """)
-    expect_failure(run(args, 2, path, {}, work), "compute 'rho' (density) does not run on several MPI ranks yet",
-                   "refused")
+    lines = {}
+    for ranks in (1, 2, 3):
+        result = run(args, ranks, path, {}, work)
+        if result.returncode != 0:
+            fail(f"{ranks} rank(s): exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+        lines[ranks] = [line for line in result.stdout.splitlines() if line and line[0].isdigit()]
+    if len(lines[1]) != 1 or lines[2] != lines[1] or lines[3] != lines[1]:
+        fail(f"pbf.value of a per-particle compute differs, or printed more than once: {lines}")
+    print(f"pbf.value('rho') printed once, the same at 1, 2 and 3 ranks: {lines[1][0]}")
 
 
 def main():
@@ -225,7 +236,7 @@ def main():
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
                         choices=["identical", "identical_wcsph", "identical_solid", "restart", "script_error",
-                                 "rank_error", "refused"])
+                                 "rank_error", "per_particle"])
     args = parser.parse_args()
     args.binary = os.path.abspath(args.binary)
     with tempfile.TemporaryDirectory() as work:
