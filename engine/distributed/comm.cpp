@@ -186,24 +186,31 @@ void exchange(std::span<const int> peers, const std::vector<std::vector<char>>& 
   exchange_known(peers, send, recv);
 }
 
-std::vector<std::vector<char>> all_to_all_bytes(const std::vector<std::vector<char>>& send) {
-  const std::size_t R = static_cast<std::size_t>(world_size);
+void all_to_all_bytes(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& received) {
+  const std::size_t R = static_cast<std::size_t>(world_size), me = static_cast<std::size_t>(my_rank);
   std::vector<std::int64_t> counts(R);
   for (std::size_t r = 0; r < R; ++r) counts[r] = static_cast<std::int64_t>(send[r].size());
   const std::vector<std::int64_t> incoming = all_to_all(counts);
-  std::vector<std::vector<char>> received(R);
-  received[static_cast<std::size_t>(my_rank)] = send[static_cast<std::size_t>(my_rank)];
-  std::vector<int> peers;
-  std::vector<std::vector<char>> out, in;
+  received.resize(R);
+  received[me].assign(send[me].begin(), send[me].end());
+  // Straight from and into the callers' buffers, only with the ranks there is something for.
+  std::vector<MPI_Request> requests;
   for (std::size_t r = 0; r < R; ++r) {
-    if (static_cast<int>(r) == my_rank || (!counts[r] && !incoming[r])) continue;
-    peers.push_back(static_cast<int>(r));
-    out.push_back(send[r]);
-    in.emplace_back(static_cast<std::size_t>(incoming[r]));
+    if (r == me) continue;
+    received[r].resize(static_cast<std::size_t>(incoming[r]));
+    if (incoming[r] > 0) {
+      requests.emplace_back();
+      MPI_Irecv(received[r].data(), count_of(received[r].size()), MPI_CHAR, static_cast<int>(r), 2, MPI_COMM_WORLD,
+                &requests.back());
+    }
   }
-  exchange_known(peers, out, in);
-  for (std::size_t k = 0; k < peers.size(); ++k) received[static_cast<std::size_t>(peers[k])] = std::move(in[k]);
-  return received;
+  for (std::size_t r = 0; r < R; ++r) {
+    if (r == me || counts[r] == 0) continue;
+    requests.emplace_back();
+    MPI_Isend(send[r].data(), count_of(send[r].size()), MPI_CHAR, static_cast<int>(r), 2, MPI_COMM_WORLD,
+              &requests.back());
+  }
+  if (!requests.empty()) MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
 
 std::int64_t exclusive_sum(std::int64_t value) {

@@ -60,9 +60,10 @@ void exchange(std::span<const int> peers, const std::vector<std::vector<char>>& 
 void exchange_known(std::span<const int> peers, const std::vector<std::vector<char>>& send,
                     std::vector<std::vector<char>>& recv);
 
-// send[r] to rank r, for every rank (empty ones cost nothing but their count); returns what
-// each rank sent to this one. The counts go all to all, the bytes only where there are some.
-std::vector<std::vector<char>> all_to_all_bytes(const std::vector<std::vector<char>>& send);
+// send[r] to rank r, for every rank (empty ones cost nothing but their count); received[r] is
+// what rank r sent to this one (the buffers keep their capacity between calls). The counts go
+// all to all, the bytes only where there are some.
+void all_to_all_bytes(const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& received);
 // The sum of `value` over the ranks before this one.
 std::int64_t exclusive_sum(std::int64_t value);
 // Writes one file together: each rank its bytes at its offset (MPI-IO), into a temporary

@@ -73,9 +73,10 @@ void Decomposition::cells_of(const Particles& P, const GridGeometry& grid, std::
     for (int a = 0; a < 3; ++a) cells_[3 * i + a] = grid.cell_along(a, x[a][i]);
 }
 
-void Decomposition::balance(const Particles& P, const GridGeometry& grid) {
-  cells_of(P, grid, P.size());
-  std::vector<std::uint32_t> mine(P.size());
+// Cuts the boxes anew from the first `counted` particles of this rank (every rank's together).
+void Decomposition::balance(const Particles& P, const GridGeometry& grid, std::size_t counted) {
+  cells_of(P, grid, counted);
+  std::vector<std::uint32_t> mine(counted);
   std::iota(mine.begin(), mine.end(), 0u);
   tree_.clear();
   split(0, comm::ranks(), CellRange::all(grid), mine, cells_);
@@ -188,39 +189,28 @@ std::size_t record_size(const Particles& P, const std::vector<FieldId>& fields) 
 }  // namespace
 
 // Sends each particle whose destination is another rank there, and takes in those sent here.
+// Sends each particle whose destination is another rank there, and takes in those sent here.
 void Decomposition::send_away(Particles& P, const std::vector<int>& destination) {
-  const int me = comm::rank(), R = comm::ranks();
+  const int me = comm::rank();
   fields_ = P.fields();
   const std::size_t record = record_size(P, fields_), n = P.size();
-  std::vector<std::int64_t> counts(static_cast<std::size_t>(R), 0);
-  for (std::size_t i = 0; i < n; ++i)
-    if (destination[i] != me) ++counts[static_cast<std::size_t>(destination[i])];
-  const std::vector<std::int64_t> incoming = comm::all_to_all(counts);
-  std::vector<int> peers;
-  for (int r = 0; r < R; ++r)
-    if (counts[static_cast<std::size_t>(r)] || incoming[static_cast<std::size_t>(r)]) peers.push_back(r);
-  std::vector<int> slot(static_cast<std::size_t>(R), -1);
-  send_.resize(peers.size());
-  recv_.resize(peers.size());
-  for (std::size_t k = 0; k < peers.size(); ++k) {
-    slot[static_cast<std::size_t>(peers[k])] = static_cast<int>(k);
-    send_[k].clear();
-    recv_[k].resize(static_cast<std::size_t>(incoming[static_cast<std::size_t>(peers[k])]) * record);
-  }
+  outgoing_.resize(static_cast<std::size_t>(comm::ranks()));
+  for (auto& out : outgoing_) out.clear();
   std::vector<char> drop(n, 0);
   for (std::size_t i = 0; i < n; ++i)
     if (destination[i] != me) {
-      pack(P, i, send_[static_cast<std::size_t>(slot[static_cast<std::size_t>(destination[i])])]);
+      pack(P, i, outgoing_[static_cast<std::size_t>(destination[i])]);
       drop[i] = 1;
     }
-  comm::exchange_known(peers, send_, recv_);
+  comm::all_to_all_bytes(outgoing_, incoming_);
   P.erase(drop);
-  for (std::size_t k = 0; k < peers.size(); ++k)
-    unpack(P, fields_, recv_[k], record, [&](const std::vector<std::int64_t>& ids) {
-      const std::size_t first = P.size();
-      P.append(ids);
-      return first;
-    });
+  for (const auto& in : incoming_)
+    if (&in != &incoming_[static_cast<std::size_t>(me)])
+      unpack(P, fields_, in, record, [&](const std::vector<std::int64_t>& ids) {
+        const std::size_t first = P.size();
+        P.append(ids);
+        return first;
+      });
 }
 
 void Decomposition::distribute(Particles& P, const GridGeometry& grid) {
@@ -228,13 +218,7 @@ void Decomposition::distribute(Particles& P, const GridGeometry& grid) {
   // The particles every rank holds alike: all of them at the first run, those the script
   // added since at a later one. The first time, the tree is cut from them, counted once (rank 0's).
   const std::size_t n = P.size(), first = P.distributed() ? n - P.replicated() : 0;
-  if (tree_.empty()) {
-    cells_of(P, grid, comm::root() ? n : 0);
-    std::vector<std::uint32_t> mine(comm::root() ? n : 0);
-    std::iota(mine.begin(), mine.end(), 0u);
-    split(0, comm::ranks(), CellRange::all(grid), mine, cells_);
-    steps_since_balance_ = 0;
-  }
+  if (tree_.empty()) balance(P, grid, comm::root() ? n : 0);
   cells_of(P, grid, n);
   std::vector<char> drop(n, 0);
   for (std::size_t i = first; i < n; ++i) drop[i] = owner(&cells_[3 * i]) != comm::rank();
@@ -247,21 +231,18 @@ void Decomposition::migrate(Particles& P, const GridGeometry& grid) {
   Timer timer(seconds_);
   P.drop_ghosts();
   ++steps_since_balance_;
-  auto gather_load = [&] {
-    const std::int64_t mine = static_cast<std::int64_t>(P.size());
-    const std::vector<std::int64_t> all = comm::gather_all(std::span<const std::int64_t>(&mine, 1));
-    load_.least = static_cast<double>(*std::min_element(all.begin(), all.end()));
-    load_.most = static_cast<double>(*std::max_element(all.begin(), all.end()));
-    load_.mean = static_cast<double>(std::accumulate(all.begin(), all.end(), std::int64_t{0})) / double(all.size());
-  };
-  gather_load();
-  if (load_.most > kImbalance * load_.mean && steps_since_balance_ >= kBalanceEvery) balance(P, grid);
+  // The counts the last migration left decide (one gathering a step).
+  if (load_.most > kImbalance * load_.mean && steps_since_balance_ >= kBalanceEvery) balance(P, grid, P.size());
   const std::size_t n = P.size();
   cells_of(P, grid, n);
   std::vector<int> destination(n);
   for (std::size_t i = 0; i < n; ++i) destination[i] = owner(&cells_[3 * i]);
   send_away(P, destination);
-  gather_load();
+  const std::int64_t mine = static_cast<std::int64_t>(P.size());
+  const std::vector<std::int64_t> all = comm::gather_all(std::span<const std::int64_t>(&mine, 1));
+  load_.least = static_cast<double>(*std::min_element(all.begin(), all.end()));
+  load_.most = static_cast<double>(*std::max_element(all.begin(), all.end()));
+  load_.mean = static_cast<double>(std::accumulate(all.begin(), all.end(), std::int64_t{0})) / double(all.size());
 }
 
 CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid) {

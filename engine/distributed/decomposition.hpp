@@ -79,7 +79,7 @@ class Decomposition {
     long at = 0;
     int below = -1, above = -1, rank = -1;
   };
-  void balance(const Particles& P, const GridGeometry& grid);
+  void balance(const Particles& P, const GridGeometry& grid, std::size_t counted);
   int split(int first_rank, int ranks, const CellRange& box, std::vector<std::uint32_t>& mine,
             const std::vector<long>& cells);
   void cells_of(const Particles& P, const GridGeometry& grid, std::size_t n);
@@ -97,7 +97,8 @@ class Decomposition {
   std::vector<int> peers_;
   std::vector<std::vector<std::uint32_t>> send_index_;
   std::vector<std::size_t> ghost_first_, ghost_count_;
-  std::vector<std::vector<char>> send_, recv_;
+  std::vector<std::vector<char>> send_, recv_;       // per peer (ghosts)
+  std::vector<std::vector<char>> outgoing_, incoming_;  // per rank (migration)
   std::vector<FieldId> fields_;  // what a particle carries (every live field)
 };
 

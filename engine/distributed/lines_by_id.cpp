@@ -36,7 +36,8 @@ void write_lines_by_id(const std::string& path, const std::string& head, std::si
     out.insert(out.end(), text.begin() + static_cast<std::ptrdiff_t>(begin),
                text.begin() + static_cast<std::ptrdiff_t>(begin + length));
   }
-  const std::vector<std::vector<char>> received = comm::all_to_all_bytes(send);
+  std::vector<std::vector<char>> received;
+  comm::all_to_all_bytes(send, received);
   send.clear();
   // This rank's block in id order.
   const std::size_t first = id_block_begin(total, me, R), count = id_block_begin(total, me + 1, R) - first;

@@ -52,7 +52,8 @@ RestartSummary write_restart_distributed(Simulation& sim, const std::string& pat
         else put_value<double>(out, P.data(f, c)[i]);
       }
   }
-  const std::vector<std::vector<char>> received = comm::all_to_all_bytes(send);
+  std::vector<std::vector<char>> received;
+  comm::all_to_all_bytes(send, received);
   send.clear();
 
   // This rank's block: the ids, then each component's values, in id order.

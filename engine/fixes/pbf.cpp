@@ -331,7 +331,8 @@ class PositionBasedFluid : public Fix {
     real local_most = 0;
 #pragma omp parallel for simd reduction(max : local_most) schedule(static)
     for (std::size_t i = 0; i < n; ++i) local_most = excess[i] > local_most ? excess[i] : local_most;
-    const double most = ranks ? comm::max(double(local_most)) : double(local_most);
+    // Over the ranks only when the target reads it: one reduction per iteration otherwise.
+    const double most = ranks && target_max_ > 0 ? comm::max(double(local_most)) : double(local_most);
     reached_ = (target_ <= 0 || mean <= target_) && (target_max_ <= 0 || most <= target_max_);
     sim.solver_report().error = mean;
   }
