@@ -24,6 +24,9 @@
 --   support       the kernel's radius in spacings, default 2
 --   lid           the height of the tank's closed top (m), default 1 (the experiment's tank
 --                 is open: a higher lid lets a splash rise as it would there)
+--   friction      the walls' and the box's friction, a tangential velocity decay rate (1/s,
+--                 default 0: free slip); no_slip = 1 stops the fluid's tangential motion at
+--                 the box (the box fix has no no-slip)
 --   t_end         simulated time (s), default 2
 --   out           output directory, default "out/spheric" (created)
 --   probes        1 (default): the probe, gauge and sample styles; 0 leaves them out
@@ -98,8 +101,11 @@ else
   if (var.vorticity or 1) ~= 0 then pbf.fix("vorticity", "vorticity", {epsilon = var.vorticity}) end
   if (var.xsph or 1) ~= 0 then pbf.fix("xsph", "xsph", {c = var.xsph}) end
 end
-pbf.fix("walls", "box", {})                        -- the tank: slip walls, closed at z = 1 m
-pbf.fix("obstacle", "solid", {shape = "box", lo = box_lo, hi = box_hi})   -- fluid outside
+-- The tank (closed at z = lid) and the obstacle (fluid outside): free slip unless friction says.
+local no_slip = require("flag")(var.no_slip, false, "no_slip")
+pbf.fix("walls", "box", {friction = var.friction})
+pbf.fix("obstacle", "solid", {shape = "box", lo = box_lo, hi = box_hi, friction = var.friction,
+                              no_slip = no_slip})
 
 if out ~= "" then os.execute(string.format("mkdir -p '%s'", out)) end
 require("outputs").add(out, {color = "speed", min = 0, max = 4, direction = {1, 1.6, -1.2}})
