@@ -169,7 +169,7 @@ int l_lattice(lua_State* L) {
 int l_read_scene(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.read_scene");
-  if (S.sim.particles().size() > 0)
+  if (S.sim.global_count() > 0)
     throw Error("pbf.read_scene: the scene file sets the domain, so read it before creating any particle");
   const SceneFile scene = read_scene_file(lua::path(L, 1, "pbf.read_scene: the path"));
   const double mass = load_scene(S.sim, scene);

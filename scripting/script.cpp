@@ -216,8 +216,12 @@ int l_time(lua_State* L) {
   lua_pushnumber(L, state(L).sim.time());
   return 1;
 }
-int l_count(lua_State* L) {  // every rank's particles (collective in a distributed run)
+int l_count(lua_State* L) {  // every rank's particles
   lua_pushinteger(L, static_cast<lua_Integer>(state(L).sim.particles().global_size()));
+  return 1;
+}
+int l_rank_count(lua_State* L) {  // this rank's own (where a distributed run put them)
+  lua_pushinteger(L, static_cast<lua_Integer>(state(L).sim.particles().size()));
   return 1;
 }
 int l_rank(lua_State* L) {
@@ -324,6 +328,7 @@ Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}, std:
       {"time", lua::guarded<l_time>},
       {"count", lua::guarded<l_count>},
       {"rank", lua::guarded<l_rank>},
+      {"rank_count", lua::guarded<l_rank_count>},
       {"ranks", lua::guarded<l_ranks>},
       {"print_all", lua::guarded<l_print_all>},
       {"timing", lua::guarded<l_timing>}};

@@ -10,27 +10,40 @@
 
 namespace pbf {
 
-Particles::Particles() {
+Particles::Particles() : distributed_(comm::distributed()) {
   declare({"position", 3, "position (m)"});
   declare({"velocity", 3, "velocity (m/s)"});
   declare({"mass", 1, "mass (kg)"});
 }
 
 void Particles::add(const real position[3], const real velocity[3], real mass) {
-  if (ghosts_) throw Error("Particles::add with ghosts present");
+  if (ghosts_) drop_ghosts();  // (the last run's: rebuilt when next needed)
   for (int c = 0; c < 3; ++c) fields_[kPosition].data[c].push_back(position[c]);
   for (int c = 0; c < 3; ++c) fields_[kVelocity].data[c].push_back(velocity[c]);
   fields_[kMass].data[0].push_back(mass);
   for (std::size_t f = kMass + 1; f < fields_.size(); ++f)
     for (auto& component : fields_[f].data) component.push_back(0);  // none for a freed field
   ids_.push_back(next_id_++);
-  if (distributed_) ++replicated_;
 }
 
-std::size_t Particles::global_size() const {
-  if (!distributed_) return size();
-  const std::int64_t own = static_cast<std::int64_t>(size() - replicated_);
-  return static_cast<std::size_t>(comm::sum(own)) + replicated_;
+Particles::Share Particles::share(std::size_t count) const {
+  if (!distributed_) return {0, count};
+  const auto rank = static_cast<unsigned __int128>(comm::rank()), ranks = static_cast<unsigned __int128>(comm::ranks());
+  return {static_cast<std::size_t>(count * rank / ranks), static_cast<std::size_t>(count * (rank + 1) / ranks)};
+}
+
+std::size_t Particles::finish_source(std::size_t first) {
+  const std::size_t added = size() - first;
+  if (!distributed_) return added;
+  // add() numbered them on from next_id_ as if this rank were alone.
+  const std::int64_t base = next_id_ - static_cast<std::int64_t>(added);
+  const std::int64_t before = comm::exclusive_sum(static_cast<std::int64_t>(added));
+  const auto total = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(added)));
+  for (std::size_t k = 0; k < added; ++k) ids_[first + k] = base + before + static_cast<std::int64_t>(k);
+  next_id_ = base + static_cast<std::int64_t>(total);
+  global_ += total;
+  unplaced_ += total;
+  return total;
 }
 
 void Particles::resize_all(std::size_t n) {
@@ -78,29 +91,81 @@ void Particles::erase(const std::vector<char>& drop) {
 }
 
 std::size_t Particles::remove(const std::vector<char>& drop) {
-  if (ghosts_ || distributed_) throw Error("Particles::remove: only before the particles are distributed");
+  if (ghosts_) throw Error("Particles::remove with ghosts present");
   const std::size_t n = size();
   std::vector<std::uint32_t> kept;
   kept.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     if (!drop[i]) kept.push_back(static_cast<std::uint32_t>(i));
-  if (kept.size() == n) return 0;
+  if (!distributed_ && kept.size() == n) return 0;
+  std::vector<std::int64_t> old_ids(ids_.begin(), ids_.begin() + static_cast<std::ptrdiff_t>(n));
   for (Field& field : fields_)
     for (auto& component : field.data) {
       if (component.empty()) continue;  // a freed field
       for (std::size_t k = 0; k < kept.size(); ++k) component[k] = component[kept[k]];
       component.resize(kept.size());
     }
+  ids_.resize(kept.size());
+  if (distributed_) {
+    renumber_across_ranks(old_ids, drop);
+    return n - kept.size();
+  }
   // New ids: the rank of each remaining particle's old id.
-  std::vector<std::int64_t> old_ids(kept.size());
-  for (std::size_t k = 0; k < kept.size(); ++k) old_ids[k] = ids_[kept[k]];
   std::vector<std::uint32_t> by_id(kept.size());
   for (std::size_t k = 0; k < by_id.size(); ++k) by_id[k] = static_cast<std::uint32_t>(k);
-  std::sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return old_ids[a] < old_ids[b]; });
-  ids_.assign(kept.size(), 0);
+  std::sort(by_id.begin(), by_id.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return old_ids[kept[a]] < old_ids[kept[b]]; });
   for (std::size_t rank = 0; rank < by_id.size(); ++rank) ids_[by_id[rank]] = static_cast<std::int64_t>(rank);
   next_id_ = static_cast<std::int64_t>(kept.size());
   return n - kept.size();
+}
+
+// A remaining particle's new id is its old one less the particles removed with smaller ids on
+// every rank. This rank's ids, sorted, fall into runs of consecutive ids (a share of a lattice
+// or a file is one run); the runs of all ranks, gathered with their removed counts and put in
+// order, give each run the count removed before it.
+void Particles::renumber_across_ranks(const std::vector<std::int64_t>& old_ids, const std::vector<char>& drop) {
+  const std::size_t n = old_ids.size();
+  std::vector<std::uint32_t> by_id(n);
+  for (std::size_t i = 0; i < n; ++i) by_id[i] = static_cast<std::uint32_t>(i);
+  std::sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return old_ids[a] < old_ids[b]; });
+  std::vector<std::int64_t> runs;  // (first id, removed in the run) pairs
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = by_id[k];
+    if (k == 0 || old_ids[i] != old_ids[by_id[k - 1]] + 1) runs.insert(runs.end(), {old_ids[i], 0});
+    runs.back() += drop[i] ? 1 : 0;
+  }
+  const std::vector<std::int64_t> all = comm::gather_all_varying(runs);
+  std::vector<std::pair<std::int64_t, std::int64_t>> ordered;
+  for (std::size_t r = 0; r + 1 < all.size(); r += 2) ordered.emplace_back(all[r], all[r + 1]);
+  std::sort(ordered.begin(), ordered.end());
+  std::int64_t removed_total = 0;
+  for (auto& [first, removed] : ordered) {
+    const std::int64_t in_run = removed;
+    removed = removed_total;  // now: removed before the run
+    removed_total += in_run;
+  }
+  // The kept particles in memory order are those of old_ids without the dropped ones.
+  std::vector<std::int64_t> new_id(n, -1);
+  std::int64_t removed_before = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = by_id[k];
+    if (k == 0 || old_ids[i] != old_ids[by_id[k - 1]] + 1) {
+      const auto run = std::lower_bound(ordered.begin(), ordered.end(), std::make_pair(old_ids[i], std::int64_t{0}),
+                                        [](const auto& a, const auto& b) { return a.first < b.first; });
+      removed_before = run->second;
+    }
+    if (drop[i])
+      ++removed_before;
+    else
+      new_id[i] = old_ids[i] - removed_before;
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!drop[i]) ids_[kept++] = new_id[i];
+  global_ -= static_cast<std::size_t>(removed_total);
+  unplaced_ = std::min(unplaced_, global_);
+  next_id_ = static_cast<std::int64_t>(global_);
 }
 
 void Particles::fill(Field& field) const {
@@ -175,6 +240,21 @@ void Particles::reset(std::vector<std::int64_t> ids) {
   ghosts_ = 0;
   ids_ = std::move(ids);
   next_id_ = static_cast<std::int64_t>(ids_.size());
+  global_ = ids_.size();
+  unplaced_ = distributed_ ? global_ : 0;
+  for (auto& field : fields_)
+    if (field.live) fill(field);
+}
+
+void Particles::reset_share(std::vector<std::int64_t> ids, std::size_t global) {
+  for (std::int64_t id : ids)
+    if (id < 0 || static_cast<std::uint64_t>(id) >= global)
+      throw Error(fmt::format("particle ids must lie in 0..{}; found {}", global - 1, id));
+  ghosts_ = 0;
+  ids_ = std::move(ids);
+  next_id_ = static_cast<std::int64_t>(global);
+  global_ = global;
+  unplaced_ = global;
   for (auto& field : fields_)
     if (field.live) fill(field);
 }

@@ -48,18 +48,30 @@ class Particles {
   // Appends one particle; its id is its creation index (the input order).
   void add(const real position[3], const real velocity[3], real mass);
 
-  // A distributed run: each rank holds the particles in its part of the domain (the
-  // decomposition moves them); the ids stay those of the whole set. The particles of all
-  // ranks together (a collective call when distributed).
+  // A distributed run (under an MPI launcher, from the start): each rank holds a part of the
+  // particles; the ids stay those of the whole set. A source of particles (a lattice, a file)
+  // is created in shares: each rank creates the candidates share(count) names, in order, with
+  // add(), and finish_source() gives them the ids one process gives them. The shares are
+  // placed by space (engine/distributed/decomposition.hpp) at the next run's start, or when
+  // neighbours are first needed.
   bool distributed() const { return distributed_; }
-  void set_distributed(bool distributed) {
-    distributed_ = distributed;
-    replicated_ = 0;
-  }
-  // Particles the script added since they were distributed (the last ones): every rank added
-  // the same, until the next run's start shares them out.
-  std::size_t replicated() const { return replicated_; }
-  std::size_t global_size() const;
+  void set_distributed(bool distributed) { distributed_ = distributed; }
+  struct Share {
+    std::size_t first = 0, end = 0;
+  };
+  // This rank's candidates of a source of `count`: [first, end), a block of count / ranks in
+  // rank order (all of them in one process).
+  Share share(std::size_t count) const;
+  // Gives the particles added from index `first` on their ids: the next ids after those of
+  // the lower ranks' shares, as one process creating every candidate in order numbers them.
+  // Returns how many every rank added together. Collective in a distributed run.
+  std::size_t finish_source(std::size_t first);
+  // The particles of every rank (no communication: kept up to date by every change).
+  std::size_t global_size() const { return distributed_ ? global_ : size(); }
+  // Particles created since the decomposition last placed them (on all ranks: the same on each).
+  std::size_t unplaced() const { return distributed_ ? unplaced_ : 0; }
+  // The decomposition put every particle on the rank that owns its cell.
+  void mark_placed() { unplaced_ = 0; }
   // The id the next particle added takes: the count of particles ever created on all ranks.
   std::int64_t next_id() const { return next_id_; }
   void set_next_id(std::int64_t id) { next_id_ = id; }
@@ -112,10 +124,13 @@ class Particles {
   // Replaces every particle by `ids.size()` zeroed ones with these ids (a restart fills in
   // the fields). The ids must be a permutation of 0..n-1.
   void reset(std::vector<std::int64_t> ids);
+  // A distributed run's reset: this rank's share of a set of `global` particles (ids in
+  // 0..global-1, each on one rank), not yet placed.
+  void reset_share(std::vector<std::int64_t> ids, std::size_t global);
 
   // Removes the particles whose `drop` entry is non-zero, keeping the others' order; ids
-  // are renumbered 0..n-1 in their old order (the input order of those that remain).
-  // Returns how many were removed.
+  // are renumbered 0..n-1 in their old order (the input order of those that remain), across
+  // every rank in a distributed run (collective there). Returns how many this rank removed.
   std::size_t remove(const std::vector<char>& drop);
 
   // Reorders every field: particle i of the result is particle order[i] of before.
@@ -134,9 +149,10 @@ class Particles {
   void fill(Field& field) const;  // zeroed arrays for every particle
   std::vector<Field> fields_;
   std::vector<std::int64_t> ids_;
-  std::size_t ghosts_ = 0, replicated_ = 0;
+  std::size_t ghosts_ = 0, global_ = 0, unplaced_ = 0;
   std::int64_t next_id_ = 0;
   bool distributed_ = false;
+  void renumber_across_ranks(const std::vector<std::int64_t>& old_ids, const std::vector<char>& drop);
   void resize_all(std::size_t n);  // every live field and the ids
   // permute()'s buffer for the ids, kept so that reordering allocates nothing.
   std::vector<std::int64_t> id_scratch_;

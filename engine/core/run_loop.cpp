@@ -74,9 +74,10 @@ void RunLoop::prepare() {
   sim_.collect_boundaries();
   sim_.warn_unmatched_states();
   for (const auto& f : sim_.fixes_) f->prepare_scene(sim_);
-  if (P.size() == 0) throw Error("run: no particle is left: every one was created inside a solid");
+  if (sim_.global_count() == 0) throw Error("run: no particle is left: every one was created inside a solid");
 
   check_pipeline();
+  distribute();
   // Particles that start on top of one another would move as one for ever (no kernel gradient
   // between them): moved apart by a rule of positions and ids before any fix sees them. Only at
   // step 0, the start state: later a run continues a flow (a restart, pbf.run called in a loop)
@@ -84,7 +85,6 @@ void RunLoop::prepare() {
   if (sim_.step_ == 0 &&
       std::any_of(sim_.fixes_.begin(), sim_.fixes_.end(), [](const auto& f) { return f->needs_neighbors(); }))
     separate_coincident(sim_);
-  distribute();
   // Every fix declares the fields it uses; the outputs start last, after the fields no fix
   // declared are freed, so that they see what this run has.
   P.begin_declarations();
@@ -133,15 +133,12 @@ void RunLoop::prepare() {
   row_checks_ = timing_.row("checks", "non-finite values, domain");
 }
 
-// A run on several ranks: the particles are shared out among them by space (the first run;
-// later ones share out the particles the script added since). Styles not yet written for it
-// are refused by name. The neighbour grid's cells are the whole domain's, from the count of
-// every rank's particles, so that every rank lists neighbours alike.
+// A run on several ranks: the particles created since the last run (each rank's shares of the
+// sources) go to the ranks that own their cells. Styles not yet written for it are refused by
+// name.
 void RunLoop::distribute() {
-  auto& P = sim_.particles_;
-  if (!Decomposition::wanted()) {
-    sim_.geometry_ = GridGeometry::of(sim_.domain_, sim_.h_, P.size());
-    sim_.global_count_ = P.size();
+  if (!sim_.particles_.distributed()) {
+    sim_.geometry_ = GridGeometry::of(sim_.domain_, sim_.h_, sim_.particles_.size());
     return;
   }
   for (const auto& f : sim_.fixes_)
@@ -154,10 +151,7 @@ void RunLoop::distribute() {
       throw Error(fmt::format("compute '{}' ({}) does not run on several MPI ranks yet; run this scene on one "
                               "(without mpirun)",
                               c->id(), c->style()));
-  sim_.global_count_ = P.global_size();
-  sim_.geometry_ = GridGeometry::of(sim_.domain_, sim_.h_, sim_.global_count_);
-  if (!P.distributed() || P.replicated() > 0) sim_.decomposition_.distribute(P, sim_.geometry_);
-  sim_.positions_changed();
+  sim_.place_particles();
 }
 
 // What no single fix can see: a force style without an integrator of accelerations.
@@ -219,7 +213,7 @@ void RunLoop::check_start_state() const {
 void RunLoop::run(std::int64_t steps, double until) {
   const double start = now();
   // What is missing first, then what is absurd.
-  if (sim_.particles_.size() == 0)
+  if (sim_.global_count() == 0)
     throw Error("run: there are no particles (create them with pbf.lattice or pbf.read_scene)");
   if (sim_.h_ <= 0) throw Error("run: the kernel radius h is not set (pbf.kernel_radius)");
   if (sim_.dt_ <= 0) throw Error("run: the time step is not set (pbf.timestep)");
@@ -265,7 +259,7 @@ void RunLoop::run(std::int64_t steps, double until) {
   for (const auto& f : sim_.fixes_) f->finish(sim_);
   timing_.wall_seconds = now() - start;
   timing_.steps = sim_.step_ - first;
-  timing_.particles = sim_.global_count_;
+  timing_.particles = sim_.global_count();
   if (sim_.particles_.distributed()) {
     const auto& load = sim_.decomposition_.load();
     timing_.ranks = comm::ranks();

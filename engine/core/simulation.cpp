@@ -206,7 +206,24 @@ Compute* Simulation::find_compute(const std::string& id) const {
   return nullptr;
 }
 
+void Simulation::place_particles() {
+  auto& P = particles_;
+  if (!P.distributed()) return;
+  if (h_ <= 0) throw Error("the kernel radius h is not set");
+  // The cells are the whole domain's, from every rank's count, so that every rank lists
+  // neighbours alike (engine/distributed/decomposition.hpp); a count that changed them (a
+  // solid left particles out) re-cuts the boxes.
+  const GridGeometry cells = GridGeometry::of(domain_, h_, P.global_size());
+  const bool same_cells =
+      cells.cell_size == geometry_.cell_size && std::equal(cells.dims, cells.dims + 3, geometry_.dims);
+  if (P.unplaced() == 0 && same_cells) return;
+  geometry_ = cells;
+  decomposition_.distribute(P, geometry_);
+  positions_changed();
+}
+
 void Simulation::refresh_neighbors() {
+  place_particles();
   if (lists_valid_ && grid_version_ == positions_version_ && grid_.particle_count() == particles_.size()) return;
   if (h_ <= 0) throw Error("the kernel radius h is not set");
   if (!particles_.distributed()) geometry_ = GridGeometry::of(domain_, h_, particles_.size());
@@ -251,6 +268,7 @@ void Simulation::rebuild_ghosts() {
 const NeighborGrid& Simulation::point_cells() {
   if (h_ <= 0) throw Error("the kernel radius h is not set (pbf.kernel_radius): a probe has no kernel");
   auto& P = particles_;
+  place_particles();
   if (!P.distributed()) {
     geometry_ = GridGeometry::of(domain_, h_, P.size());
     ghost_range_ = CellRange::all(geometry_);

@@ -141,12 +141,12 @@ class Simulation {
   };
   SolverReport& solver_report() { return solver_report_; }
   // --- distributed runs (engine/distributed/decomposition.hpp) ---
-  // The particles of all ranks (counted at the start of each run; collective after the script
-  // added particles to a distributed run, before the next run shares them out).
-  std::size_t global_count() const {
-    if (!particles_.distributed()) return particles_.size();
-    return particles_.replicated() ? particles_.global_size() : global_count_;
-  }
+  // The particles of all ranks.
+  std::size_t global_count() const { return particles_.global_size(); }
+  // Puts the particles created since the last placement (each rank's shares of the sources)
+  // on the ranks that own their cells, with the neighbour grid's cells for the global count.
+  // The run's start does it, and so does the first neighbour search before it. Collective.
+  void place_particles();
   // The ghosts' copies of these arrays (one value per particle, ghosts included) from their
   // owners: a pass calls it for the values it reads at neighbours that changed since the
   // neighbour stage. A no-op in a run of one process. Collective.
@@ -195,7 +195,6 @@ class Simulation {
   CellRange ghost_range_;
   GridGeometry geometry_;
   Decomposition decomposition_;
-  std::size_t global_count_ = 0;
   // The grid and lists of this rank's particles (ghosts rebuilt first); the seconds each part took.
   struct ListTimes {
     double ghosts = 0, binning = 0, lists = 0;

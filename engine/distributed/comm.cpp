@@ -116,6 +116,23 @@ std::vector<std::int64_t> gather_all(std::span<const std::int64_t> values) {
   return all;
 }
 
+std::vector<std::int64_t> gather_all_varying(std::span<const std::int64_t> values) {
+  if (!started || world_size < 2) return {values.begin(), values.end()};
+  const std::int64_t mine = static_cast<std::int64_t>(values.size());
+  const std::vector<std::int64_t> sizes = gather_all(std::span<const std::int64_t>(&mine, 1));
+  std::vector<int> counts(sizes.size()), displs(sizes.size());
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < sizes.size(); ++r) {
+    counts[r] = count_of(static_cast<std::size_t>(sizes[r]));
+    displs[r] = count_of(total);
+    total += static_cast<std::size_t>(sizes[r]);
+  }
+  std::vector<std::int64_t> all(total);
+  MPI_Allgatherv(values.data(), count_of(values.size()), MPI_INT64_T, all.data(), counts.data(), displs.data(),
+                 MPI_INT64_T, MPI_COMM_WORLD);
+  return all;
+}
+
 std::vector<std::vector<char>> gather_bytes(std::span<const char> bytes) {
   std::vector<std::vector<char>> all;
   if (!started || world_size < 2) {

@@ -44,6 +44,8 @@ double min(double value);
 void sum(ExactSum& accumulator);
 // values of every rank, rank by rank (each rank gives the same count).
 std::vector<std::int64_t> gather_all(std::span<const std::int64_t> values);
+// The same where each rank gives a count of its own.
+std::vector<std::int64_t> gather_all_varying(std::span<const std::int64_t> values);
 // Bytes of every rank, rank by rank, on rank 0 (elsewhere: empty).
 std::vector<std::vector<char>> gather_bytes(std::span<const char> bytes);
 // Rank 0's bytes to every rank.

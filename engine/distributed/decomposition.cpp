@@ -79,6 +79,7 @@ void Decomposition::balance(const Particles& P, const GridGeometry& grid, std::s
   std::vector<std::uint32_t> mine(counted);
   std::iota(mine.begin(), mine.end(), 0u);
   tree_.clear();
+  cut_for_ = grid;
   split(0, comm::ranks(), CellRange::all(grid), mine, cells_);
   steps_since_balance_ = 0;
 }
@@ -215,16 +216,12 @@ void Decomposition::send_away(Particles& P, const std::vector<int>& destination)
 
 void Decomposition::distribute(Particles& P, const GridGeometry& grid) {
   P.drop_ghosts();
-  // The particles every rank holds alike: all of them at the first run, those the script
-  // added since at a later one. The first time, the tree is cut from them, counted once (rank 0's).
-  const std::size_t n = P.size(), first = P.distributed() ? n - P.replicated() : 0;
-  if (tree_.empty()) balance(P, grid, comm::root() ? n : 0);
-  cells_of(P, grid, n);
-  std::vector<char> drop(n, 0);
-  for (std::size_t i = first; i < n; ++i) drop[i] = owner(&cells_[3 * i]) != comm::rank();
-  P.erase(drop);
-  P.set_distributed(true);
+  // The first time, the tree is cut from every rank's particles (shares of the sources, which
+  // together are the whole set); later the particles created since join those placed.
+  const bool same_cells = grid.cell_size == cut_for_.cell_size && std::equal(grid.dims, grid.dims + 3, cut_for_.dims);
+  if (tree_.empty() || !same_cells) balance(P, grid, P.size());  // (more particles may widen the cells)
   migrate(P, grid);  // and the load line
+  P.mark_placed();
 }
 
 void Decomposition::migrate(Particles& P, const GridGeometry& grid) {

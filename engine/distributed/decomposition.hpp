@@ -42,7 +42,8 @@ class Decomposition {
   // Whether the run is split among ranks (more than one).
   static bool wanted();
 
-  // The whole set is on every rank (each ran the script): each keeps the particles of its box.
+  // Places the particles created since the last placement (each rank holds its share of them,
+  // anywhere in the domain) on the ranks that own their cells; the first time, cuts the boxes.
   void distribute(Particles& P, const GridGeometry& grid);
   // Start of a step: particles outside this rank's box go to their owners (rebalancing first
   // when the imbalance has grown past the threshold).
@@ -87,6 +88,7 @@ class Decomposition {
   void pack(const Particles& P, std::size_t i, std::vector<char>& out) const;
 
   std::vector<Node> tree_;
+  GridGeometry cut_for_;  // the cells the tree was cut in
   CellRange box_;  // this rank's box
   std::vector<long> cells_;  // 3 per particle: the cell coordinates (scratch)
   std::int64_t steps_since_balance_ = 0;

@@ -171,17 +171,12 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
         ++moved;
       }
     }
-    // Once the particles are distributed (a later run) none may be left out: the ids would
-    // have to be renumbered across the ranks.
+    // (In a distributed run the ids are renumbered across the ranks, and the counts summed.)
+    std::size_t removed = P.remove(drop);
     if (P.distributed()) {
-      const auto inside = comm::sum(static_cast<std::int64_t>(std::count(drop.begin(), drop.end(), 1)));
-      if (inside > 0)
-        throw Error(fmt::format("solid '{}': {} particles lie inside it or nearer than its contact distance, and a "
-                                "distributed run cannot leave out particles after its first run: add the solid "
-                                "before the first run",
-                                id(), inside));
+      removed = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(removed)));
+      moved = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(moved)));
     }
-    const std::size_t removed = P.distributed() ? 0 : P.remove(drop);
     if (sim.global_count() == 0)
       throw Error(fmt::format("solid '{}' ({} it) leaves no particle: every one was created inside the wall", id(),
                               fluid_inside_ ? "fluid inside" : "fluid outside"));

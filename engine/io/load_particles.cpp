@@ -55,10 +55,16 @@ LoadedParticles add_particles(Simulation& sim, const std::vector<double>& x, con
                    source, sim.kernel_radius(), m.spacing);
     loaded.mass = m.mass;
   }
-  for (std::size_t i = 0; i < n; ++i) {
+  // In a distributed run each rank keeps its share of the rows (the whole file is read, checked
+  // and weighed alike on every rank).
+  Particles& P = sim.particles();
+  const Particles::Share share = P.share(n);
+  const std::size_t first = P.size();
+  for (std::size_t i = share.first; i < share.end; ++i) {
     const real p[3] = {rx[i], ry[i], rz[i]}, v[3] = {real(vx[i]), real(vy[i]), real(vz[i])};
-    sim.particles().add(p, v, real(mass.empty() ? loaded.mass : mass[i]));
+    P.add(p, v, real(mass.empty() ? loaded.mass : mass[i]));
   }
+  P.finish_source(first);
   sim.positions_changed();
   return loaded;
 }

@@ -14,6 +14,8 @@ namespace pbf {
 class Simulation;
 
 constexpr std::size_t kHeaderBytes = 32;
+inline constexpr unsigned char kMagic[8] = {0x89, 'P', 'B', 'F', 'R', 'S', 'T', '\n'};
+inline constexpr std::uint32_t kByteOrderMark = 0x01020304, kSwappedByteOrderMark = 0x04030201;
 
 // The 32-byte header: magic, version, byte-order mark, real size, CRC-32 and size of the payload.
 std::vector<unsigned char> restart_header(std::uint32_t real_bytes, std::uint32_t crc, std::uint64_t size);

@@ -33,22 +33,26 @@ std::size_t add_lattice(Simulation& sim, const double lo[3], const double hi[3],
     throw Error(fmt::format("lattice: the region holds no lattice site: the spacing {} is larger than the region "
                             "along {}",
                             spacing, "xyz"[count[0] < 1 ? 0 : count[1] < 1 ? 1 : 2]));
-  check_memory_for(sim.particles(), total, fmt::format("lattice: spacing {} m", spacing));
+  // In a distributed run each rank creates its share of the sites (in the same order).
+  Particles& P = sim.particles();
+  const auto sites = static_cast<std::size_t>(total);
+  const Particles::Share share = P.share(sites);
+  check_memory_for(P, static_cast<double>(share.end - share.first), fmt::format("lattice: spacing {} m", spacing));
   // Before the mass rule, which sums over every lattice site within h.
   check_kernel_radius(sim.kernel_radius(), spacing, "pbf.lattice");
   const real mass = real(lattice_mass(spacing, sim.kernels(), sim.rest_density()));
   const real v[3] = {real(velocity[0]), real(velocity[1]), real(velocity[2])};
-  std::size_t added = 0;
-  const long nx = static_cast<long>(count[0]), ny = static_cast<long>(count[1]), nz = static_cast<long>(count[2]);
-  for (long k = 0; k < nz; ++k)
-    for (long j = 0; j < ny; ++j)
-      for (long i = 0; i < nx; ++i) {
-        const double q[3] = {lo[0] + (i + 0.5) * spacing, lo[1] + (j + 0.5) * spacing, lo[2] + (k + 0.5) * spacing};
-        if (inside && inside->signed_distance({q[0], q[1], q[2]}) > 0) continue;
-        const real p[3] = {real(q[0]), real(q[1]), real(q[2])};
-        sim.particles().add(p, v, mass);
-        ++added;
-      }
+  const std::size_t nx = static_cast<std::size_t>(count[0]), ny = static_cast<std::size_t>(count[1]);
+  const std::size_t first = P.size();
+  for (std::size_t site = share.first; site < share.end; ++site) {  // x fastest, then y, then z
+    const std::size_t i = site % nx, j = site / nx % ny, k = site / nx / ny;
+    const double q[3] = {lo[0] + (double(i) + 0.5) * spacing, lo[1] + (double(j) + 0.5) * spacing,
+                         lo[2] + (double(k) + 0.5) * spacing};
+    if (inside && inside->signed_distance({q[0], q[1], q[2]}) > 0) continue;
+    const real p[3] = {real(q[0]), real(q[1]), real(q[2])};
+    P.add(p, v, mass);
+  }
+  const std::size_t added = P.finish_source(first);
   if (added == 0) throw Error("lattice: the shape holds no lattice site (smaller than the spacing?)");
   sim.positions_changed();
   return added;

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -59,6 +60,7 @@ std::size_t separate_coincident(Simulation& sim) {
     }
     ++moved;
   }
+  if (P.distributed()) moved = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(moved)));
   if (moved == 0) return 0;
   sim.positions_changed();
   spdlog::warn("{} particle{} started on top of another (closer than {:.3g} m, {} h): moved apart by {:.3g} m ({} h), "

@@ -9,7 +9,7 @@ namespace pbf {
 
 bool HalfSpaceWall::prepare(const Simulation& sim) {
   const auto& P = sim.particles();
-  if (P.size() == 0) return false;
+  if (sim.global_count() == 0) return false;
   const double mass = P.mean_mass();
   if (mass == prepared_[0] && sim.kernel_radius() == prepared_[1] && sim.rest_density() == prepared_[2]) return false;
   prepared_[0] = mass;

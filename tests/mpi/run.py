@@ -13,8 +13,14 @@ Cases:
   identical_solid  scenarios/spheric_dambreak.lua at 5 cm (PBF, the box obstacle across the
               ranks' boundaries, its load in thermo, pressure probes and gauges): probes.csv and
               thermo.csv.
-  restart     a restart written on 3 ranks, continued on 2 ranks and on 1 process: the later
-              frames are those of the run that never stopped.
+  sources     tests/mpi/sources.lua: a particle file, lattices (two on the same sites, one in a
+              sphere), solids that leave particles out before the first run and after it, a
+              lattice added between runs: every rank creates a share of each (about 1/ranks of
+              the particles) and the frames and thermo CSV are those of one process.
+  restart     a restart written on 3 ranks, continued on 2 ranks and on 1 process, and one
+              written by one process, continued on 3 (each rank reads its share of the
+              records): the later frames are those of the run that never stopped; a damaged
+              one is refused once.
   script_error  an error every rank meets (an unknown style): one message, exit code 1.
   rank_error  an error only rank 1 meets, while the others wait in a collective call: its
               message, naming the rank, once; exit code 1; no rank left running.
@@ -146,25 +152,62 @@ def identical_solid(args, work):
           "1, 2 and 3 ranks")
 
 
+def sources(args, work):
+    """Each rank creates its share of every source, and the run is one process's."""
+    path = os.path.join(work, "block.csv")
+    with open(path, "w") as f:  # a block of water, x < 0.2, with a velocity along x
+        f.write("x,y,z,vx,vy,vz\n")
+        for k in range(10):
+            for j in range(15):
+                for i in range(10):
+                    f.write(f"{0.01 + 0.02 * i:.6g},{0.01 + 0.02 * j:.6g},{0.01 + 0.02 * k:.6g},0.5,0,0\n")
+    script = os.path.join(HERE, "sources.lua")
+    same_outputs(args, work, script, {"file": path}, ["thermo.csv"], least_frames=4)
+    for ranks in (2, 3):
+        result = run(args, ranks, script, {"file": path, "out": os.path.join(work, f"shares{ranks}")}, work)
+        counts = [line.split("created: ")[1].split(" of ") for line in result.stdout.splitlines() if "created: " in line]
+        shares = [int(c[0]) for c in counts]
+        total = int(counts[0][1]) if counts else 0
+        # Each rank holds its share of each source, not the whole set: a block of 1/ranks of the
+        # candidates (of the sphere's, the sites of its bounding box, which hold unequal parts of it).
+        if len(shares) != ranks or sum(shares) != total or max(shares) > 1.5 * total / ranks:
+            fail(f"{ranks} ranks: each should create about {total}/{ranks} particles; they created {shares}")
+        print(f"{ranks} ranks created {shares} of {total} particles")
+    print("a particle file, lattices (coincident sites, a sphere), solids before and after the first run, a lattice "
+          "between runs: frames and thermo.csv identical at 1, 2 and 3 ranks")
+
+
 def restart(args, work):
     """A restart written on 3 ranks continues on 2, and on 1 process, as the run never stopped."""
     script = os.path.join(HERE, "dambreak.lua")
     saved = os.path.join(work, "at120.restart")
+    saved_by_one = os.path.join(work, "at120_one.restart")  # in one process's memory order
     runs = [(1, {"out": os.path.join(work, "straight")}),
             (3, {"out": os.path.join(work, "first"), "steps": 120, "save": saved}),
             (2, {"out": os.path.join(work, "on2"), "read": saved}),
-            (1, {"out": os.path.join(work, "on1"), "read": saved})]
+            (1, {"out": os.path.join(work, "on1"), "read": saved}),
+            (1, {"out": os.path.join(work, "first_one"), "steps": 120, "save": saved_by_one}),
+            (3, {"out": os.path.join(work, "on3_from_one"), "read": saved_by_one})]
     for ranks, variables in runs:
         result = run(args, ranks, script, variables, work)
         if result.returncode != 0:
             fail(f"{ranks} rank(s) with {variables}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
     later = [f"f_{k:05d}.txt" for k in (3, 4, 5)]  # steps 150, 200, 250
     for name in later:
-        for where in ("on2", "on1"):
+        for where in ("on2", "on1", "on3_from_one"):
             a, b = os.path.join(work, "straight", name), os.path.join(work, where, name)
             if not os.path.exists(b) or not filecmp.cmp(a, b, shallow=False):
                 fail(f"{name} of the run continued {where} differs from the run that never stopped")
-    print(f"written on 3 ranks at step 120, continued on 2 and on 1: {', '.join(later)} identical to the straight run")
+    # A damaged payload: every rank checks its block of it, and the combined checksum says so once.
+    with open(saved, "r+b") as f:
+        f.seek(os.path.getsize(saved) // 2)
+        byte = f.read(1)
+        f.seek(-1, os.SEEK_CUR)
+        f.write(bytes([byte[0] ^ 0xFF]))
+    expect_failure(run(args, 3, script, {"out": os.path.join(work, "damaged"), "read": saved}, work),
+                   "checksum mismatch", "a damaged restart on 3 ranks")
+    print(f"written on 3 ranks at step 120, continued on 2 and on 1, and written by one process, continued on 3: "
+          f"{', '.join(later)} identical to the straight run")
 
 
 def expect_failure(result, needle, name):
@@ -235,7 +278,7 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_wcsph", "identical_solid", "restart", "script_error",
+                        choices=["identical", "identical_wcsph", "identical_solid", "sources", "restart", "script_error",
                                  "rank_error", "per_particle"])
     args = parser.parse_args()
     args.binary = os.path.abspath(args.binary)
