@@ -504,7 +504,7 @@ TEST(ParticleInput, PositionVectorFromAVtuFrameAndZeroVelocityByDefault) {
 
 TEST(ParticleInput, MissingOrBadColumnsAreErrorsNamingTheFile) {
   auto table = [](std::vector<Column> columns) {
-    ParticleTable t{"parts.csv", 2, std::move(columns)};
+    ParticleTable t{"parts.csv", 2, std::move(columns), 0, 2};
     return t;
   };
   auto col = [](const std::string& name, std::vector<double> v, int k = 1) { return Column{name, k, std::move(v)}; };
@@ -530,7 +530,7 @@ TEST(ParticleInput, MissingOrBadColumnsAreErrorsNamingTheFile) {
   EXPECT_ERROR_NAMING(interpret_particles(table({x, y, z, col("mass", {1, 0})})), "parts.csv", "particle 1 (0-based, "
                     "in file order) has mass 0");
   EXPECT_ERROR_NAMING(interpret_particles(table({x, y, col("z", {0})})), "parts.csv", "column 'z' holds 1 values");
-  EXPECT_ERROR_NAMING(interpret_particles(ParticleTable{"none.csv", 0, {col("x", {}), col("y", {}), col("z", {})}}),
+  EXPECT_ERROR_NAMING(interpret_particles(ParticleTable{"none.csv", 0, {col("x", {}), col("y", {}), col("z", {})}, 0, 0}),
                     "none.csv", "holds no particles");
   EXPECT_ERROR_NAMING(read_particle_file("frames/p.xyz"), "frames/p.xyz", "unsupported particle file type '.xyz'; "
                     "supported: .vtu");
@@ -539,13 +539,13 @@ TEST(ParticleInput, MissingOrBadColumnsAreErrorsNamingTheFile) {
 TEST(ParticleInput, MessagesListAFewColumnsAndValuesMustFitThePrecision) {
   std::vector<Column> many;
   for (int k = 0; k < 30; ++k) many.push_back(Column{"c" + std::to_string(k), 1, {0}});
-  EXPECT_ERROR_NAMING(interpret_particles(ParticleTable{"wide.csv", 1, many}), "wide.csv",
+  EXPECT_ERROR_NAMING(interpret_particles(ParticleTable{"wide.csv", 1, many, 0, 1}), "wide.csv",
                     "found: c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11, c12, c13, c14, c15, c16, c17, c18, c19, "
                     "and 10 more");
   auto one = [](double vx, double mass) {
     return ParticleTable{"p.csv", 1, {Column{"x", 1, {0}}, Column{"y", 1, {0}}, Column{"z", 1, {0}},
                                       Column{"vx", 1, {vx}}, Column{"vy", 1, {0}}, Column{"vz", 1, {0}},
-                                      Column{"mass", 1, {mass}}}};
+                                      Column{"mass", 1, {mass}}}, 0, 1};
   };
   if (sizeof(real) == 4) {  // a float build: 1e39 would become infinite, 1e-50 zero
     EXPECT_ERROR_NAMING(interpret_particles(one(1e39, 1)), "p.csv", "has velocity (1e+39, 0, 0), not finite in single");

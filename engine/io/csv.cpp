@@ -1,13 +1,13 @@
 #include "engine/io/csv.hpp"
 
 #include <charconv>
-#include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <set>
 #include <string_view>
 
 #include "engine/core/error.hpp"
+#include "engine/distributed/comm.hpp"
+#include "engine/io/text_lines.hpp"
 
 namespace pbf {
 
@@ -45,73 +45,64 @@ constexpr std::string_view kUtf8ByteOrderMark = "\xEF\xBB\xBF";
 }  // namespace
 
 ParticleTable read_csv(const std::string& path) {
-  // An ifstream opens a directory and fails only at its first read; a device or a pipe may
-  // never end (/dev/zero) or block the open (a FIFO): say what the path is instead.
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (std::filesystem::is_directory(status))
-    throw Error(fmt::format("{}: cannot open the file: it is a directory", path), true);
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw Error(fmt::format("{}: cannot open the file: it is not a regular file (a device, a pipe or a socket)", path),
-                true);
-  std::ifstream in(path);
-  if (!in) throw Error(fmt::format("{}: cannot open the file", path), true);
-  auto fail = [&](long line, const std::string& message) {
-    throw Error(fmt::format("{}:{}: {}", path, line, message), true);
-  };
-
+  TextLines lines(path, "the file");
   ParticleTable table;
   table.path = path;
   std::string text;
   std::string names;  // the header's names, for messages
-  long line = 0, header_line = 0;
-  while (std::getline(in, text)) {
-    ++line;
+  long header_line = 0;
+  while (header_line == 0 && lines.next(text)) {  // the first line that is neither blank nor a comment
+    const long line = lines.line();
     if (line == 1) {
       // Excel and Windows editors start UTF-8 files with a byte-order mark: not data.
       if (text.starts_with(kUtf8ByteOrderMark)) text.erase(0, kUtf8ByteOrderMark.size());
       // A UTF-16 file would only give baffling errors about its header.
       if (text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF"))
-        fail(line, "the file is UTF-16 text; save it as UTF-8 or ASCII");
+        lines.fail(line, "the file is UTF-16 text; save it as UTF-8 or ASCII");
     }
     const auto content = trim(text);
     if (content.empty() || content[0] == '#') continue;
     const auto fields = split(content);
-
-    if (header_line == 0) {  // the first line that is neither blank nor a comment
-      header_line = line;
-      bool all_numbers = true;
-      std::set<std::string_view> seen;  // a set: a header of many columns costs no quadratic search
-      for (std::size_t k = 0; k < fields.size(); ++k) {
-        std::string_view name = fields[k];
-        if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
-        if (name.empty()) fail(line, fmt::format("column {} of the header has no name", k + 1));
-        if (!seen.insert(name).second) fail(line, fmt::format("column '{}' appears twice in the header", name));
-        double ignored;
-        all_numbers = all_numbers && !number_problem(name, ignored);
-        table.columns.push_back(Column{std::string(name), 1, {}});
-        names.append(k ? "," : "").append(name);
-      }
-      if (all_numbers)  // a file without a header would otherwise lose its first particle silently
-        fail(line, "the first line must be a header naming the columns (e.g. x,y,z,vx,vy,vz), not numbers");
-      if (names.size() > 100) names = names.substr(0, 100) + "...";  // a message of a line, whatever the header
-      continue;
+    header_line = line;
+    bool all_numbers = true;
+    std::set<std::string_view> seen;  // a set: a header of many columns costs no quadratic search
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      std::string_view name = fields[k];
+      if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
+      if (name.empty()) lines.fail(line, fmt::format("column {} of the header has no name", k + 1));
+      if (!seen.insert(name).second) lines.fail(line, fmt::format("column '{}' appears twice in the header", name));
+      double ignored;
+      all_numbers = all_numbers && !number_problem(name, ignored);
+      table.columns.push_back(Column{std::string(name), 1, {}});
+      names.append(k ? "," : "").append(name);
     }
+    if (all_numbers)  // a file without a header would otherwise lose its first particle silently
+      lines.fail(line, "the first line must be a header naming the columns (e.g. x,y,z,vx,vy,vz), not numbers");
+    if (names.size() > 100) names = names.substr(0, 100) + "...";  // a message of a line, whatever the header
+  }
+  if (header_line == 0)
+    throw Error(fmt::format("{}: empty file: expected a header line naming the columns", path), true);
 
+  lines.share_rest();  // this process's rows (all of them in one process)
+  while (lines.next(text)) {
+    const auto content = trim(text);
+    if (content.empty() || content[0] == '#') continue;
+    const auto fields = split(content);
     if (fields.size() != table.columns.size())
-      fail(line, fmt::format("expected {} fields ({}), found {}", table.columns.size(), names, fields.size()));
+      lines.fail(lines.line(),
+                 fmt::format("expected {} fields ({}), found {}", table.columns.size(), names, fields.size()));
     for (std::size_t k = 0; k < fields.size(); ++k) {
       double v = 0;
       if (const char* problem = number_problem(fields[k], v))
-        fail(line, fmt::format("column '{}': '{}' {}", table.columns[k].name, fields[k].substr(0, 40), problem));
+        lines.fail(lines.line(),
+                   fmt::format("column '{}': '{}' {}", table.columns[k].name, fields[k].substr(0, 40), problem));
       table.columns[k].values.push_back(v);
     }
     ++table.count;
   }
-  if (in.bad()) throw Error(fmt::format("{}: cannot read the file", path), true);
-  if (header_line == 0)
-    throw Error(fmt::format("{}: empty file: expected a header line naming the columns", path), true);
-  if (table.count == 0)
+  table.first_row = static_cast<std::size_t>(lines.first_row());
+  table.total = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(table.count)));
+  if (table.total == 0)
     throw Error(fmt::format("{}: no data rows after the header on line {}", path, header_line), true);
   return table;
 }

@@ -6,7 +6,8 @@
 //     0.1, 0.1, 0.2, 0, 0, 0, 0.008
 //
 // Fields are separated by commas, with optional spaces or tabs around them; blank lines and
-// lines starting with '#' are skipped; quoting is not supported (numbers need none).
+// lines starting with '#' are skipped; quoting is not supported (numbers need none). In a
+// distributed run each rank reads the header and its share of the rows (text_lines.hpp).
 #include <string>
 
 #include "engine/io/particle_table.hpp"

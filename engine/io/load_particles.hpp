@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/particle_input.hpp"
+
 namespace pbf {
 
 class Simulation;
@@ -16,12 +18,11 @@ struct LoadedParticles {
   std::vector<std::string> ignored;  // file columns not used
 };
 
-// Positions and velocities in file order; `mass` empty: the mass rule. Every position must
-// lie inside the domain (the error names `source` and the particle's 0-based index).
-LoadedParticles add_particles(Simulation& sim, const std::vector<double>& x, const std::vector<double>& y,
-                              const std::vector<double>& z, const std::vector<double>& vx,
-                              const std::vector<double>& vy, const std::vector<double>& vz,
-                              const std::vector<double>& mass, const std::string& source);
+// This process's share of a file's particles (all of them in one process), in file order;
+// without masses, the mass rule over the whole file. Every position must lie inside the
+// domain (the error names `source` and the particle's 0-based index in the file). Collective in
+// a distributed run.
+LoadedParticles add_particles(Simulation& sim, const ParticleInput& in, const std::string& source);
 
 // A .vtu (for example a dump/vtk frame, filtered in ParaView) or a .csv with a header.
 LoadedParticles load_particle_file(Simulation& sim, const std::string& path);

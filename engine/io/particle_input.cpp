@@ -8,17 +8,41 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
+#include "engine/core/particles.hpp"
 #include "engine/core/real.hpp"
 #include "engine/io/csv.hpp"
 #include "engine/io/vtu.hpp"
 
 namespace pbf {
 
+namespace {
+
+// A table read whole, cut to this process's share of its rows (all of them in one process).
+void keep_share(ParticleTable& table) {
+  table.total = table.count;
+  Particles none;  // (the share depends on the rank count alone)
+  const Particles::Share share = none.share(table.count);
+  if (share.first == 0 && share.end == table.count) return;
+  for (Column& column : table.columns) {
+    const auto c = static_cast<std::size_t>(column.components);
+    column.values.erase(column.values.begin() + static_cast<std::ptrdiff_t>(share.end * c), column.values.end());
+    column.values.erase(column.values.begin(), column.values.begin() + static_cast<std::ptrdiff_t>(share.first * c));
+  }
+  table.first_row = share.first;
+  table.count = share.end - share.first;
+}
+
+}  // namespace
+
 ParticleTable read_particle_file(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".vtu") return read_vtu(path);
-  if (ext == ".csv") return read_csv(path);
+  if (ext == ".vtu") {  // XML, read whole by every process, which keeps its share
+    ParticleTable table = read_vtu(path);
+    keep_share(table);
+    return table;
+  }
+  if (ext == ".csv") return read_csv(path);  // each process reads its share
   throw Error(fmt::format("{}: unsupported particle file type '{}'; supported: .vtu (VTK UnstructuredGrid), "
                           ".csv (a header line, then one row per particle)",
                           path, ext.empty() ? "(no extension)" : ext),
@@ -111,26 +135,32 @@ ParticleInput interpret_particles(const ParticleTable& table) {
   if (!pick.vector("position", xyz, position) && !pick.vector("", paraview_points, position))
     pick.fail(fmt::format("no particle positions: expected a 3-component column 'position' or columns x, y, z "
                           "(or ParaView's Points:0, Points:1, Points:2); found: {}", pick.found()));
-  if (table.count == 0) pick.fail("the file holds no particles");
+  if (table.total == 0) pick.fail("the file holds no particles");
   if (!pick.vector("velocity", vxyz, velocity) && !pick.vector("", paraview_velocity, velocity))
     for (auto* v : velocity) v->assign(table.count, 0.0);
-  if (const Column* m = pick.take("mass", 1)) in.mass = m->values;
+  if (const Column* m = pick.take("mass", 1)) {
+    in.has_mass = true;
+    in.mass = m->values;
+  }
+  in.first_row = table.first_row;
+  in.total = table.total;
   in.ignored = pick.unused();
 
   // Finite in the particle data's precision too: with -DPBF_REAL=float, a velocity of 1e39
   // would become infinite and a mass of 1e-50 zero.
   auto fits = [](double v) { return std::isfinite(v) && std::fabs(v) <= std::numeric_limits<real>::max(); };
   const char* precision = sizeof(real) == sizeof(double) ? "" : " in single precision";
+  auto row = [&](std::size_t i) { return table.first_row + i; };  // in the file
   for (std::size_t i = 0; i < table.count; ++i) {
     if (!fits(in.x[i]) || !fits(in.y[i]) || !fits(in.z[i]))
-      pick.fail(fmt::format("particle {} (0-based, in file order) has position ({}, {}, {}), not finite{}", i, in.x[i],
+      pick.fail(fmt::format("particle {} (0-based, in file order) has position ({}, {}, {}), not finite{}", row(i), in.x[i],
                             in.y[i], in.z[i], precision));
     if (!fits(in.vx[i]) || !fits(in.vy[i]) || !fits(in.vz[i]))
-      pick.fail(fmt::format("particle {} (0-based, in file order) has velocity ({}, {}, {}), not finite{}", i,
+      pick.fail(fmt::format("particle {} (0-based, in file order) has velocity ({}, {}, {}), not finite{}", row(i),
                             in.vx[i], in.vy[i], in.vz[i], precision));
-    if (!in.mass.empty() && !(fits(in.mass[i]) && static_cast<real>(in.mass[i]) > 0))
+    if (in.has_mass && !(fits(in.mass[i]) && static_cast<real>(in.mass[i]) > 0))
       pick.fail(fmt::format("particle {} (0-based, in file order) has mass {}; masses must be positive and finite{}",
-                            i, in.mass[i], precision));
+                            row(i), in.mass[i], precision));
   }
   return in;
 }

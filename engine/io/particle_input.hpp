@@ -12,9 +12,12 @@ namespace pbf {
 // error listing the supported ones.
 ParticleTable read_particle_file(const std::string& path);
 
+// This process's share of a file's particles (all of them in one process; ParticleTable).
 struct ParticleInput {
   std::vector<double> x, y, z, vx, vy, vz;
-  std::vector<double> mass;          // empty when the file has no "mass" column
+  bool has_mass = false;             // whether the file has a "mass" column
+  std::vector<double> mass;
+  std::size_t first_row = 0, total = 0;  // the first one's index in the file; the file's count
   std::vector<std::string> ignored;  // columns not used, in file order, for the caller to log
 };
 

@@ -16,8 +16,9 @@ struct Column {
 
 struct ParticleTable {
   std::string path;  // the file it came from, for error messages
-  std::size_t count = 0;
+  std::size_t count = 0;  // the rows here: the file's, or in a distributed run this rank's share
   std::vector<Column> columns;
+  std::size_t first_row = 0, total = 0;  // the index of the first of them in the file; the file's rows
 
   // The column called `name`, or null.
   const Column* find(const std::string& name) const {

@@ -349,14 +349,12 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
     r.get_array(s.bytes, r.get<std::uint64_t>());
   }
   if (r.left() != 0) throw Error(fmt::format("{}: {} bytes of unexpected data at the end", what, r.left()));
-  // What a lattice or a particle file would have been refused for (a file made by hand); in a
-  // distributed run from each share's spacing, the least of them (a share's is never below the
-  // whole set's).
+  // What a lattice or a particle file would have been refused for (a file made by hand).
   try {
     probe.check_scale();
-    double spacing = sampled_spacing(particles.x(), particles.y(), particles.z(), mine);
-    if (particles.distributed()) spacing = comm::min(spacing > 0 ? spacing : HUGE_VAL);
-    check_kernel_radius(h, std::isfinite(spacing) ? spacing : 0, "the saved particles");
+    check_kernel_radius(h, sampled_spacing_of_shares(particles.x(), particles.y(), particles.z(), mine,
+                                                     particles.distributed()),
+                        "the saved particles");
   } catch (const Error& e) {
     throw Error(fmt::format("{}: {}", what, e.what()));
   }

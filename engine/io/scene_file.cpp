@@ -2,9 +2,7 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <limits>
 #include <spdlog/spdlog.h>
 #include <sstream>
@@ -12,6 +10,8 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/real.hpp"
+#include "engine/distributed/comm.hpp"
+#include "engine/io/text_lines.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/io/load_particles.hpp"
 #include "engine/core/simulation.hpp"
@@ -22,41 +22,25 @@ namespace {
 
 constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
+// The file's lines as tokens, and its numbers checked, each error naming the file and line.
 class Reader {
  public:
-  explicit Reader(const std::string& path) : path_(path) {
-    // An ifstream opens a directory and fails only at its first read; a device or a pipe
-    // may never end (/dev/zero) or block the open (a FIFO): say what the path is instead.
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (std::filesystem::is_directory(status))
-      throw Error(fmt::format("{}: cannot open scene file: it is a directory", path), true);
-    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-      throw Error(fmt::format("{}: cannot open scene file: it is not a regular file (a device, a pipe or a socket)",
-                              path), true);
-    in_.open(path);
-    if (!in_) throw Error(fmt::format("{}: cannot open scene file", path), true);
-  }
+  explicit Reader(const std::string& path) : lines_(path, "scene file") {}
 
-  [[noreturn]] void fail(long line, const std::string& message) const {
-    throw Error(fmt::format("{}:{}: {}", path_, line, message), true);
-  }
+  [[noreturn]] void fail(long line, const std::string& message) const { lines_.fail(line, message); }
 
-  // The next non-comment line split into tokens; false at end of file.
+  // The next non-comment line split into tokens; false at end of file (or of the share).
   bool next_line(std::vector<std::string>& tokens) {
     std::string text;
-    while (std::getline(in_, text)) {
-      ++line_;
+    while (lines_.next(text)) {
       // A UTF-8 byte-order mark, as some Windows editors write, is not part of the data.
-      if (line_ == 1 && text.starts_with(kByteOrderMark)) text.erase(0, kByteOrderMark.size());
-      const auto first = text.find_first_not_of(" \t\r");
-      if (first == std::string::npos || text[first] == '#') continue;
+      if (lines_.line() == 1 && text.starts_with(kByteOrderMark)) text.erase(0, kByteOrderMark.size());
+      if (!is_data_line(text)) continue;
       tokens.clear();
       std::istringstream words(text);
       for (std::string w; words >> w;) tokens.push_back(w);
       return true;
     }
-    if (in_.bad()) fail(line_ + 1, "cannot read the file");
     return false;
   }
 
@@ -66,10 +50,10 @@ class Reader {
     double value = 0;
     auto [end, ec] = std::from_chars(token.data() + plus, token.data() + token.size(), value);
     if (ec == std::errc::result_out_of_range)
-      fail(line_, fmt::format("{}: '{}' is out of the range of a double", what, token));
+      fail(line(), fmt::format("{}: '{}' is out of the range of a double", what, token));
     if (ec != std::errc() || end != token.data() + token.size())
-      fail(line_, fmt::format("{}: '{}' is not a number", what, token));
-    if (!std::isfinite(value)) fail(line_, fmt::format("{}: '{}' is not a finite number", what, token));
+      fail(line(), fmt::format("{}: '{}' is not a number", what, token));
+    if (!std::isfinite(value)) fail(line(), fmt::format("{}: '{}' is not a finite number", what, token));
     return value;
   }
 
@@ -79,18 +63,17 @@ class Reader {
   double particle_number(const std::string& token, const std::string& what, bool positive = false) const {
     const double value = number(token, what);
     if (std::fabs(value) > static_cast<double>(std::numeric_limits<real>::max()))
-      fail(line_, fmt::format("{}: '{}' is too large for the particle data's precision", what, token));
+      fail(line(), fmt::format("{}: '{}' is too large for the particle data's precision", what, token));
     if (positive && value > 0 && !(static_cast<real>(value) > 0))
-      fail(line_, fmt::format("{}: '{}' is too small for the particle data's precision", what, token));
+      fail(line(), fmt::format("{}: '{}' is too small for the particle data's precision", what, token));
     return value;
   }
 
-  long line() const { return line_; }
+  long line() const { return lines_.line(); }
+  TextLines& lines() { return lines_; }
 
  private:
-  std::string path_;
-  std::ifstream in_;
-  long line_ = 0;
+  TextLines lines_;
 };
 
 }  // namespace
@@ -138,10 +121,13 @@ SceneFile read_scene_file(const std::string& path) {
   scene.interval = header[4];
   scene.t_final = header[5];
 
-  // Particles: never trust N for allocation before the data confirm it.
+  // Particles (this process's share of the lines): never trust N for allocation before the
+  // data confirm it.
+  reader.lines().share_rest();
+  const std::int64_t first = reader.lines().first_row();
   std::int64_t read = 0;
   while (reader.next_line(tokens)) {
-    if (read == scene.count)
+    if (first + read == scene.count)
       reader.fail(reader.line(), fmt::format("more particle lines than the count N = {} given on line {}",
                                              scene.count, count_line));
     if (tokens.size() != 6)
@@ -151,14 +137,18 @@ SceneFile read_scene_file(const std::string& path) {
     for (int k = 0; k < 6; ++k) p[k] = reader.particle_number(tokens[k], names[k]);
     for (int k = 0; k < 3; ++k)
       if (p[k] < 0 || p[k] > scene.L)
-        reader.fail(reader.line(), fmt::format("particle {} at ({}, {}, {}) is outside the domain [0, {}]^3", read,
-                                               p[0], p[1], p[2], scene.L));
+        reader.fail(reader.line(), fmt::format("particle {} at ({}, {}, {}) is outside the domain [0, {}]^3",
+                                               first + read, p[0], p[1], p[2], scene.L));
     scene.particles.insert(scene.particles.end(), p, p + 6);
     ++read;
   }
-  if (read != scene.count)
-    reader.fail(reader.line(), fmt::format("found {} particle line(s), but the count N on line {} is {}", read,
-                                           count_line, scene.count));
+  const std::int64_t total = comm::sum(read);
+  if (total != scene.count) {
+    const long last = static_cast<long>(comm::max(static_cast<double>(reader.line())));  // the file's last line
+    reader.fail(last, fmt::format("found {} particle line(s), but the count N on line {} is {}", total, count_line,
+                                  scene.count));
+  }
+  scene.first_row = static_cast<std::size_t>(first);
   return scene;
 }
 
@@ -171,13 +161,16 @@ double load_scene(Simulation& sim, const SceneFile& scene) {
   sim.set_domain(domain);
   sim.set_kernel_radius(scene.h);
   sim.set_timestep(scene.dt);
-  const std::size_t n = static_cast<std::size_t>(scene.count);
-  std::vector<double> column[6];
+  ParticleInput in;
+  std::vector<double>* column[6] = {&in.x, &in.y, &in.z, &in.vx, &in.vy, &in.vz};
+  const std::size_t n = scene.particles.size() / 6;
   for (int c = 0; c < 6; ++c) {
-    column[c].resize(n);
-    for (std::size_t i = 0; i < n; ++i) column[c][i] = scene.particles[6 * i + static_cast<std::size_t>(c)];
+    column[c]->resize(n);
+    for (std::size_t i = 0; i < n; ++i) (*column[c])[i] = scene.particles[6 * i + static_cast<std::size_t>(c)];
   }
-  return add_particles(sim, column[0], column[1], column[2], column[3], column[4], column[5], {}, scene.path).mass;
+  in.first_row = scene.first_row;
+  in.total = static_cast<std::size_t>(scene.count);
+  return add_particles(sim, in, scene.path).mass;
 }
 
 }  // namespace pbf

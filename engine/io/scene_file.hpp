@@ -2,7 +2,8 @@
 // The original study's scene format: six header values (particle count N, time step,
 // particle size taken as the kernel radius h, cubic domain side L, output interval, final
 // time), whitespace-separated on one line or several, then N lines "x y z vx vy vz".
-// Lines starting with '#' are comments. Every error names the file and line.
+// Lines starting with '#' are comments. Every error names the file and line. In a distributed
+// run each rank reads the header and its share of the particle lines (text_lines.hpp).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,7 +16,10 @@ struct SceneFile {
   std::string path;
   std::int64_t count = 0;
   double dt = 0, h = 0, L = 0, interval = 0, t_final = 0;
-  std::vector<double> particles;  // x y z vx vy vz per particle, in file order
+  // x y z vx vy vz per particle, in file order: this process's share of the lines (all of them
+  // in one process), the first of which is particle first_row of the file.
+  std::vector<double> particles;
+  std::size_t first_row = 0;
 };
 
 SceneFile read_scene_file(const std::string& path);

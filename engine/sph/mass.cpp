@@ -4,8 +4,11 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/sph/neighbor_grid.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/core/simulation.hpp"
+#include "engine/distributed/comm.hpp"
+#include "engine/distributed/selection.hpp"
+#include "engine/sph/neighbor_grid.hpp"
 
 namespace pbf {
 
@@ -66,48 +69,67 @@ double lattice_gradient_sum(double mass, const Kernels& kernels, double rest_den
   return gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + sum_j;
 }
 
-MassEstimate mass_from_positions(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain,
-                                 const Kernels& kernels, double rest_density) {
-  const double h = kernels.h;
-  if (n < 2) return {rest_density * std::pow(0.5 * h, 3), 0, 0.5 * h};
-  NeighborGrid grid;
-  grid.bin(x, y, z, n, domain, h);
-  grid.build_lists(x, y, z, h);
+MassEstimate file_mass(Simulation& sim, std::int64_t first_id, std::int64_t end_id) {
+  const double h = sim.kernel_radius(), rest_density = sim.rest_density();
+  const auto n_file = static_cast<std::size_t>(end_id - first_id);
+  if (n_file < 2) return {rest_density * std::pow(0.5 * h, 3), 0, 0.5 * h};
+  sim.refresh_neighbors();  // (in a distributed run: places the particles first; collective)
+  const Particles& P = sim.particles();
+  const bool ranks = P.distributed();
+  const NeighborGrid& grid = sim.neighbors();
+  const Kernels& kernels = sim.kernels();
+  const Domain& domain = sim.domain();
+  const std::size_t n = P.size();
+  const real *x = P.x(), *y = P.y(), *z = P.z();
+  const std::int64_t* id = P.ids();
+  auto of_file = [&](std::size_t i) { return id[i] >= first_id && id[i] < end_id; };
   auto away_from_faces = [&](std::size_t i) {
     const double p[3] = {x[i], y[i], z[i]};
     for (int a = 0; a < 3; ++a)
       if (p[a] - domain.lo[a] < h || domain.hi[a] - p[a] < h) return false;
     return true;
   };
-  // A full neighbourhood: away from the domain's faces and not at the fluid's own surface,
-  // that is with (nearly) as many neighbours as the best-surrounded particle.
-  std::uint32_t most = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (away_from_faces(i)) most = std::max(most, grid.count(i));
-  auto interior = [&](std::size_t i) { return away_from_faces(i) && grid.count(i) >= 0.95 * most; };
-  auto kernel_sum = [&](std::size_t i) {
-    double s = kernels.W(0);
-    grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t, real, real, real, real r2) { s += kernels.W(r2); });
-    return s;
-  };
-  const double count = deterministic_sum(n, [&](std::size_t i) { return interior(i) ? 1.0 : 0.0; });
-  // Median nearest-neighbour distance (h where a particle has no neighbour within h).
-  std::vector<double> nearest(n);
+  // Each of the file's particles: its neighbours from the file, and the nearest one's distance
+  // (h where it has none within h).
+  std::vector<std::uint32_t> count(n, 0);
+  std::vector<real> nearest;
+  std::vector<real> nearest_of(n, real(h));
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
+    if (!of_file(i)) continue;
     double best = h * h;
-    grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t, real dx, real dy, real dz, real) {
+    grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real) {
+      if (!of_file(j)) return;
+      ++count[i];
       best = std::min(best, double(dx) * dx + double(dy) * dy + double(dz) * dz);  // in double, as h * h
     });
-    nearest[i] = std::sqrt(best);
+    nearest_of[i] = real(std::sqrt(best));
   }
-  std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(n / 2), nearest.end());
-  const double spacing = nearest[n / 2];
-  if (count > 0) {
-    const double sum = deterministic_sum(n, [&](std::size_t i) { return interior(i) ? kernel_sum(i) : 0.0; });
-    return {rest_density * count / sum, static_cast<std::size_t>(count), spacing};
+  for (std::size_t i = 0; i < n; ++i)
+    if (of_file(i)) nearest.push_back(nearest_of[i]);
+  // A full neighbourhood: away from the domain's faces and not at the fluid's own surface,
+  // that is with (nearly) as many neighbours as the best-surrounded particle.
+  double most = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (of_file(i) && away_from_faces(i)) most = std::max(most, double(count[i]));
+  if (ranks) most = comm::max(most);
+  auto interior = [&](std::size_t i) { return of_file(i) && away_from_faces(i) && count[i] >= 0.95 * most; };
+  auto kernel_sum = [&](std::size_t i) {
+    double s = kernels.W(0);
+    grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real, real, real, real r2) {
+      if (of_file(j)) s += kernels.W(r2);
+    });
+    return s;
+  };
+  const double interiors = deterministic_sum(n, [&](std::size_t i) { return interior(i) ? 1.0 : 0.0; }, ranks);
+  // The median nearest-neighbour distance, over every rank's.
+  const double spacing = nth_smallest(nearest, n_file / 2, ranks);
+  if (interiors > 0) {
+    const double sum = deterministic_sum(n, [&](std::size_t i) { return interior(i) ? kernel_sum(i) : 0.0; }, ranks);
+    return {rest_density * interiors / sum, static_cast<std::size_t>(interiors), spacing};
   }
   return {rest_density * spacing * spacing * spacing, 0, spacing};
 }
+
 
 }  // namespace pbf

@@ -3,11 +3,14 @@
 // particle (a full neighbourhood) has the rest density, as the original Fortran code
 // rescaled it. One rule for lattices, one for particles read from a file.
 #include <cstddef>
+#include <cstdint>
 
 #include "engine/core/domain.hpp"
 #include "engine/sph/kernels.hpp"
 
 namespace pbf {
+
+class Simulation;
 
 // rho0 / sum_j W(x_j) over an infinite cubic lattice of the given spacing.
 double lattice_mass(double spacing, const Kernels& kernels, double rest_density);
@@ -18,13 +21,14 @@ struct MassEstimate {
   double spacing;         // median nearest-neighbour distance (fallback rule)
 };
 
-// For particles read from a file: rho0 / mean(sum_j W) over the particles with a full
-// neighbourhood (at least h from every face of the domain, and at least 95% as many
-// neighbours as the best-surrounded such particle, which leaves out the fluid's own free
-// surface); without such particles, rho0 times the cube of the median nearest-neighbour
-// spacing (h/2 for a single particle).
-MassEstimate mass_from_positions(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain,
-                                 const Kernels& kernels, double rest_density);
+// For particles read from a file, those with ids in [first_id, end_id) (already added, with
+// any mass): rho0 / mean(sum_j W) over the particles with a full neighbourhood among the
+// file's (at least h from every face of the domain, and at least 95% as many neighbours as the
+// best-surrounded such particle, which leaves out the fluid's own free surface); without such
+// particles, rho0 times the cube of the median nearest-neighbour spacing (h/2 for a single
+// particle). Over the simulation's neighbour lists (by cell, then id), so the same on any
+// rank count; collective in a distributed run.
+MassEstimate file_mass(Simulation& sim, std::int64_t first_id, std::int64_t end_id);
 
 // The lattice spacing at which `mass` gives an interior particle the rest density.
 double lattice_spacing(double mass, const Kernels& kernels, double rest_density);

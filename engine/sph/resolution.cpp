@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -28,6 +29,13 @@ double sampled_spacing(const real* x, const real* y, const real* z, std::size_t 
   }
   std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(samples / 2), nearest.end());
   return nearest[samples / 2];
+}
+
+double sampled_spacing_of_shares(const real* x, const real* y, const real* z, std::size_t n, bool distributed) {
+  const double spacing = sampled_spacing(x, y, z, n);
+  if (!distributed) return spacing;
+  const double least = comm::min(spacing > 0 ? spacing : HUGE_VAL);
+  return std::isfinite(least) ? least : 0;
 }
 
 void check_kernel_radius(double h, double spacing, const std::string& what) {

@@ -20,6 +20,9 @@ inline constexpr double kUsualMinSpacings = 1.5, kUsualMaxSpacings = 4;  // a wa
 // every particle: h plays no part, so a wrong h cannot make the estimate explode. 0 for
 // fewer than two particles.
 double sampled_spacing(const real* x, const real* y, const real* z, std::size_t n);
+// The same over this process's share of a set; in a distributed run the least of the shares'
+// (a share's is never below the whole set's), 0 where none has two particles. Collective there.
+double sampled_spacing_of_shares(const real* x, const real* y, const real* z, std::size_t n, bool distributed);
 
 // Throws when h is outside 1..10 spacings, warns outside 1.5..4; `what` names the source
 // of the particles (pbf.lattice, a file) in the message.

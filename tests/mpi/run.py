@@ -17,6 +17,8 @@ Cases:
               sphere), solids that leave particles out before the first run and after it, a
               lattice added between runs: every rank creates a share of each (about 1/ranks of
               the particles) and the frames and thermo CSV are those of one process.
+  scene_file  scenarios/init_file.lua on a scene file of share/make_scene.py (each rank reads
+              its share of the lines, the mass rule over the whole file): the same frames.
   restart     a restart written on 3 ranks, continued on 2 ranks and on 1 process, and one
               written by one process, continued on 3 (each rank reads its share of the
               records): the later frames are those of the run that never stopped; a damaged
@@ -177,6 +179,16 @@ def sources(args, work):
           "between runs: frames and thermo.csv identical at 1, 2 and 3 ranks")
 
 
+def scene_file(args, work):
+    """A scene file in the original study's format, each rank reading its share of the lines."""
+    path = os.path.join(work, "dambreak.scene")
+    subprocess.run([sys.executable, os.path.join(HERE, "..", "..", "share", "make_scene.py"), "--kind", "dambreak",
+                    "--particles", "1500", "--t-final", "0.2", "--interval", "0.04", path], check=True)
+    scenario = os.path.join(HERE, "..", "..", "scenarios", "init_file.lua")
+    _, frames = same_outputs(args, work, scenario, {"init": path}, [], least_frames=5)
+    print(f"a scene file (scenarios/init_file.lua): {len(frames)} frames identical at 1, 2 and 3 ranks")
+
+
 def restart(args, work):
     """A restart written on 3 ranks continues on 2, and on 1 process, as the run never stopped."""
     script = os.path.join(HERE, "dambreak.lua")
@@ -278,7 +290,7 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_wcsph", "identical_solid", "sources", "restart", "script_error",
+                        choices=["identical", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "script_error",
                                  "rank_error", "per_particle"])
     args = parser.parse_args()
     args.binary = os.path.abspath(args.binary)
