@@ -91,13 +91,15 @@ void Particles::erase(const std::vector<char>& drop) {
 }
 
 std::size_t Particles::remove(const std::vector<char>& drop) {
-  if (ghosts_) throw Error("Particles::remove with ghosts present");
   const std::size_t n = size();
   std::vector<std::uint32_t> kept;
   kept.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     if (!drop[i]) kept.push_back(static_cast<std::uint32_t>(i));
-  if (!distributed_ && kept.size() == n) return 0;
+  // (Whether any rank removes one: the common case, none, costs one sum.)
+  const std::size_t removed = n - kept.size();
+  if ((distributed_ ? comm::sum(static_cast<std::int64_t>(removed)) : std::int64_t(removed)) == 0) return 0;
+  if (ghosts_) drop_ghosts();  // (the last run's: rebuilt when next needed)
   std::vector<std::int64_t> old_ids(ids_.begin(), ids_.begin() + static_cast<std::ptrdiff_t>(n));
   for (Field& field : fields_)
     for (auto& component : field.data) {

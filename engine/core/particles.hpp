@@ -130,7 +130,8 @@ class Particles {
 
   // Removes the particles whose `drop` entry is non-zero, keeping the others' order; ids
   // are renumbered 0..n-1 in their old order (the input order of those that remain), across
-  // every rank in a distributed run (collective there). Returns how many this rank removed.
+  // every rank in a distributed run (collective there; ghosts are dropped). Returns how many
+  // this rank removed.
   std::size_t remove(const std::vector<char>& drop);
 
   // Reorders every field: particle i of the result is particle order[i] of before.

@@ -185,7 +185,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
                    removed);
     if (moved > 0)
       spdlog::debug("solid '{}': moved {} particles out to its contact distance", id(), moved);
-    if (removed > 0 || moved > 0) sim.positions_changed();
+    if (removed > 0 || moved > 0) sim.positions_changed();  // (and any ghosts were dropped)
   }
 
   void init(Simulation& sim) override {

@@ -2,8 +2,8 @@
 -- distributed-run tests (tests/mpi/run.py, case "sources"): a particle file (-v file=CSV), a
 -- lattice, a second lattice on some of its sites (coincident particles, moved apart at the
 -- start), a lattice filling a sphere, and a solid across the fluid that leaves particles out
--- (ids renumbered across the ranks). After the first run a second lattice is added and a
--- second solid leaves more out (the particles are placed by then). Every rank creates its
+-- (ids renumbered across the ranks). After the first run a second solid leaves more out (the
+-- particles are placed by then), and after the second a lattice is added. Every rank creates its
 -- share of each source: the script prints each rank's count before the first run.
 -- Writes OUT/f_*.txt (id, position, velocity, density) and OUT/thermo.csv.
 local s = 0.02
@@ -26,7 +26,8 @@ pbf.fix("dump", "dump/text", {path = out .. "/f_*.txt", every = 40, fields = {"i
 pbf.thermo{every = 10, csv = out .. "/thermo.csv", columns = {"step", "particles", "ke", "err.avg", "err.max"}}
 pbf.print_all(string.format("created: %d of %d", pbf.rank_count(), pbf.count()))
 pbf.run(80)
-pbf.lattice{lo = {0.6, 0.1, 0.3}, hi = {0.7, 0.2, 0.4}, spacing = s}
 pbf.fix("pillar", "solid", {shape = "box", lo = {0.28, 0.0, 0}, hi = {0.32, 0.06, 0.5}})  -- in the fluid
-pbf.run(80)
+pbf.run(40)
+pbf.lattice{lo = {0.6, 0.1, 0.3}, hi = {0.7, 0.2, 0.4}, spacing = s}
+pbf.run(40)
 print(string.format("sources: %d particles at the end", pbf.count()))
