@@ -36,7 +36,7 @@ inline void load_particles(const InputFile& input, const std::uint8_t* data, std
     sim.set_domain(domain);
     sim.set_kernel_radius(0.05);
     sim.set_timestep(0.001);
-    add_particles(sim, in.x, in.y, in.z, in.vx, in.vy, in.vz, in.mass, path);
+    add_particles(sim, in, path);
     check(sim.particles().size() == table.count, "not every particle was added");
   } catch (const Error&) {  // refused, as it may be
   }
