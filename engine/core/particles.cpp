@@ -26,8 +26,8 @@ void Particles::add(const real position[3], const real velocity[3], real mass) {
   ids_.push_back(next_id_++);
 }
 
-Particles::Share Particles::share(std::size_t count) const {
-  if (!distributed_) return {0, count};
+Particles::Share Particles::share_of(std::size_t count, bool distributed) {
+  if (!distributed) return {0, count};
   const auto rank = static_cast<unsigned __int128>(comm::rank()), ranks = static_cast<unsigned __int128>(comm::ranks());
   return {static_cast<std::size_t>(count * rank / ranks), static_cast<std::size_t>(count * (rank + 1) / ranks)};
 }

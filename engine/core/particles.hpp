@@ -61,7 +61,8 @@ class Particles {
   };
   // This rank's candidates of a source of `count`: [first, end), a block of count / ranks in
   // rank order (all of them in one process).
-  Share share(std::size_t count) const;
+  Share share(std::size_t count) const { return share_of(count, distributed_); }
+  static Share share_of(std::size_t count, bool distributed);
   // Gives the particles added from index `first` on their ids: the next ids after those of
   // the lower ranks' shares, as one process creating every candidate in order numbers them.
   // Returns how many every rank added together. Collective in a distributed run.

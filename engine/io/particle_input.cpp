@@ -8,41 +8,19 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
-#include "engine/core/particles.hpp"
 #include "engine/core/real.hpp"
 #include "engine/io/csv.hpp"
 #include "engine/io/vtu.hpp"
 
 namespace pbf {
 
-namespace {
-
-// A table read whole, cut to this process's share of its rows (all of them in one process).
-void keep_share(ParticleTable& table) {
-  table.total = table.count;
-  Particles none;  // (the share depends on the rank count alone)
-  const Particles::Share share = none.share(table.count);
-  if (share.first == 0 && share.end == table.count) return;
-  for (Column& column : table.columns) {
-    const auto c = static_cast<std::size_t>(column.components);
-    column.values.erase(column.values.begin() + static_cast<std::ptrdiff_t>(share.end * c), column.values.end());
-    column.values.erase(column.values.begin(), column.values.begin() + static_cast<std::ptrdiff_t>(share.first * c));
-  }
-  table.first_row = share.first;
-  table.count = share.end - share.first;
-}
-
-}  // namespace
-
 ParticleTable read_particle_file(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".vtu") {  // XML, read whole by every process, which keeps its share
-    ParticleTable table = read_vtu(path);
-    keep_share(table);
-    return table;
-  }
-  if (ext == ".csv") return read_csv(path);  // each process reads its share
+  // Each process reads its share of the rows (a .vtu's XML head and each appended array whole,
+  // one at a time; a .csv's lines of its block).
+  if (ext == ".vtu") return read_vtu(path);
+  if (ext == ".csv") return read_csv(path);
   throw Error(fmt::format("{}: unsupported particle file type '{}'; supported: .vtu (VTK UnstructuredGrid), "
                           ".csv (a header line, then one row per particle)",
                           path, ext.empty() ? "(no extension)" : ext),

@@ -12,12 +12,15 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iterator>
+#include <memory>
 #include <new>
 #include <pugixml.hpp>
 #include <set>
 #include <string_view>
 
 #include "engine/core/error.hpp"
+#include "engine/core/particles.hpp"
+#include "engine/distributed/comm.hpp"
 
 namespace pbf {
 
@@ -65,20 +68,22 @@ class VtuReader {
     if (std::filesystem::is_directory(status)) fail("cannot open the file: it is a directory");
     if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
       fail("cannot open the file: it is not a regular file (a device, a pipe or a socket)");
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) fail(fmt::format("cannot open the file ({})", std::strerror(errno)));
+    file_.reset(std::fopen(path.c_str(), "rb"));
+    if (!file_) fail(fmt::format("cannot open the file ({})", std::strerror(errno)));
+    // The XML is held in memory, up to the appended data's first byte: the appended arrays are
+    // read one at a time (appended_block), and only this process's share of each is kept.
     char buffer[65536];
     bool failed = false;
-    try {  // the whole file is held in memory: one larger than the memory is an error too
-      for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, f)) > 0;) bytes_.append(buffer, got);
-      failed = std::ferror(f);
+    try {
+      for (std::size_t got; !head_complete() && (got = std::fread(buffer, 1, sizeof buffer, file_.get())) > 0;)
+        bytes_.append(buffer, got);
+      failed = std::ferror(file_.get());
     } catch (const std::bad_alloc&) {
-      std::fclose(f);
       fail(fmt::format("cannot read the file: at {} bytes it does not fit in memory", bytes_.size()));
     }
-    const int error = errno;
-    std::fclose(f);
-    if (failed) fail(fmt::format("cannot read the file ({})", std::strerror(error)));
+    if (failed) fail(fmt::format("cannot read the file ({})", std::strerror(errno)));
+    const auto size = std::filesystem::file_size(path, ec);
+    file_size_ = ec ? bytes_.size() : static_cast<std::size_t>(size);
     if (bytes_.empty()) fail("empty file");
   }
 
@@ -106,12 +111,15 @@ class VtuReader {
     n_ = unsigned_attribute(piece, "NumberOfPoints");
     // Each point takes at least a byte per coordinate in any encoding; this bound also keeps
     // every size computed from n_ far from overflow.
-    if (n_ > bytes_.size() / 3)
-      fail_at(piece, fmt::format("NumberOfPoints = {} is more than a file of {} bytes can hold", n_, bytes_.size()));
+    if (n_ > file_size_ / 3)
+      fail_at(piece, fmt::format("NumberOfPoints = {} is more than a file of {} bytes can hold", n_, file_size_));
 
     ParticleTable table;
     table.path = path_;
-    table.count = n_;
+    share_ = Particles::share_of(n_, comm::distributed());
+    table.count = share_.end - share_.first;
+    table.first_row = share_.first;
+    table.total = n_;
     const auto points = piece.child("Points").child("DataArray");
     if (!points) fail_at(piece, "no <Points> with a <DataArray>: the file has no particle positions");
     table.columns.push_back(read_array(points, "position", "the Points array", 3));
@@ -142,6 +150,38 @@ class VtuReader {
   }
   [[noreturn]] void fail_at(pugi::xml_node node, const std::string& message) const {
     fail_at(node.offset_debug(), message);
+  }
+
+  // Whether bytes_ reaches past <AppendedData ...> to the first byte that is not a space
+  // (the '_' that starts the data), so that the head is complete and the rest can wait.
+  bool head_complete() {
+    static constexpr std::string_view kTag = "<AppendedData";
+    if (tag_ == std::string::npos) {  // searched from where the last search left off
+      tag_ = bytes_.find(kTag, scanned_);
+      scanned_ = bytes_.size() > kTag.size() ? bytes_.size() - kTag.size() : 0;
+      if (tag_ == std::string::npos) return false;
+    }
+    const auto gt = bytes_.find('>', tag_);
+    if (gt == std::string::npos) return false;
+    std::size_t p = gt + 1;
+    while (p < bytes_.size() && is_space(bytes_[p])) ++p;
+    return p < bytes_.size();
+  }
+
+  // Bytes [from, from + n) of the file (n clamped to its end).
+  std::string read_at(std::size_t from, std::size_t n) const {
+    std::string out;
+    if (from >= file_size_) return out;
+    n = std::min(n, file_size_ - from);
+    try {
+      out.resize(n);
+    } catch (const std::bad_alloc&) {
+      fail(fmt::format("cannot read the file: a block of {} bytes does not fit in memory", n));
+    }
+    if (std::fseek(file_.get(), static_cast<long>(from), SEEK_SET) != 0 ||
+        std::fread(out.data(), 1, n, file_.get()) != n)
+      fail(fmt::format("cannot read the file ({})", std::ferror(file_.get()) ? std::strerror(errno) : "it is shorter than it was"));
+    return out;
   }
 
   // pugixml cannot take raw binary, so only the XML before <AppendedData> is parsed (with
@@ -195,12 +235,12 @@ class VtuReader {
 
   // The bytes (raw) or characters (base64) of the appended block at `offset`, up to the
   // next block; `last`: no block follows.
-  std::string_view appended_block(std::uint64_t offset, bool& last) const {
+  std::string appended_block(std::uint64_t offset, bool& last) const {
     const std::size_t size = block_end_ - block_begin_;
     const auto next = offsets_.upper_bound(offset);
     last = next == offsets_.end() || *next >= size;
     const std::size_t end = last ? size : *next;
-    return std::string_view(bytes_).substr(block_begin_ + offset, end - offset);
+    return read_at(block_begin_ + offset, end - offset);
   }
 
   void locate_block(std::size_t p) {
@@ -208,11 +248,15 @@ class VtuReader {
     if (p == bytes_.size()) fail("truncated file: it ends before the appended data");
     if (bytes_[p] != '_') fail_at(p, "the appended data does not start with '_'");
     block_begin_ = p + 1;
-    // The last closing tag: the binary data before it may contain anything.
-    const auto close = bytes_.rfind("</AppendedData>");
-    if (close == std::string::npos || close < block_begin_) fail("truncated file: no closing </AppendedData>");
+    // The last closing tag: the binary data before it may contain anything. It is looked for
+    // in the file's last megabyte (only spaces and </VTKFile> may follow it).
+    const std::size_t window = std::min<std::size_t>(file_size_ - block_begin_, std::size_t{1} << 20);
+    const std::string tail = read_at(file_size_ - window, window);
+    const auto found = tail.rfind("</AppendedData>");
+    if (found == std::string::npos) fail("truncated file: no closing </AppendedData>");
+    const std::size_t close = file_size_ - window + found;
     block_end_ = close;
-    if (trim(std::string_view(bytes_).substr(close + std::strlen("</AppendedData>"))) != "</VTKFile>")
+    if (trim(std::string_view(tail).substr(found + std::strlen("</AppendedData>"))) != "</VTKFile>")
       fail("truncated file: </AppendedData> is not followed by </VTKFile>");
   }
 
@@ -244,10 +288,13 @@ class VtuReader {
     const std::string format = a.attribute("format").value();
     if (format == "ascii") {
       c.values = ascii(a, a.child_value(), count, what);
+      const auto k = static_cast<std::size_t>(c.components);  // this process's share of the rows
+      c.values.erase(c.values.begin() + static_cast<std::ptrdiff_t>(share_.end * k), c.values.end());
+      c.values.erase(c.values.begin(), c.values.begin() + static_cast<std::ptrdiff_t>(share_.first * k));
       return c;
     }
     std::string_view data;
-    std::string decoded;  // base64 data, decoded; `data` views it
+    std::string decoded, block;  // base64 data, decoded, and an appended block; `data` views one
     auto from_base64 = [&](std::string_view text, bool followed) {
       decoded = base64(a, text, what);
       return payload(a, decoded, bytes, what, false, followed);
@@ -262,14 +309,16 @@ class VtuReader {
       if (offset >= size)
         fail_at(a, fmt::format("{}: offset {} is beyond the appended data ({} bytes)", what, offset, size));
       bool last = false;
-      const std::string_view block = appended_block(offset, last);
+      block = appended_block(offset, last);
       // Raw data end in the whitespace before </AppendedData>; base64 skips whitespace anyway.
       data = base64_block_ ? from_base64(block, !last) : payload(a, block, bytes, what, last, !last);
     } else {
       fail_at(a, fmt::format("{} has format \"{}\" (expected appended, binary or ascii)", what, format));
     }
-    c.values.resize(count);  // the bytes are there: payload() checked them
-    type->convert(data.data(), count, c.values.data());
+    // The bytes are there (payload() checked them): this process's share of the rows.
+    const auto k = static_cast<std::size_t>(c.components);
+    c.values.resize((share_.end - share_.first) * k);
+    type->convert(data.data() + share_.first * k * type->size, c.values.size(), c.values.data());
     return c;
   }
 
@@ -378,7 +427,11 @@ class VtuReader {
   }
 
   std::string path_;
-  std::string bytes_;  // the whole file
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_{nullptr, std::fclose};
+  std::string bytes_;  // the file up to the appended data's first byte (the whole file if it has none)
+  std::size_t file_size_ = 0;
+  std::size_t tag_ = std::string::npos, scanned_ = 0;  // head_complete()'s search
+  Particles::Share share_;  // this process's rows
   pugi::xml_document doc_;
   std::size_t block_begin_ = 0, block_end_ = 0;  // the appended data, after '_'; 0: none
   std::set<std::uint64_t> offsets_;               // where its blocks start

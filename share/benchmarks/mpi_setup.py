@@ -2,9 +2,9 @@
 """Memory of a distributed run's set-up: does a scene funnel through one rank?
 
 One scene, a block of water of --particles particles (default 2,000,000) in a 2 x 1 x 1 m box,
-with the PBF pipeline, run for one step, made three ways: a lattice (pbf.lattice), a CSV
-particle file (pbf.read_particles) and a restart (pbf.read_restart; the restart and the CSV
-file are written first). Each is run as one process and as 2 ranks (mpirun --bind-to none,
+with the PBF pipeline, run for one step, made four ways: a lattice (pbf.lattice), a CSV
+and a .vtu particle file (pbf.read_particles; the .vtu is a dump/vtk frame) and a restart
+(pbf.read_restart; the files are written first). Each is run as one process and as 2 ranks (mpirun --bind-to none,
 1 thread a rank), under /usr/bin/time, and the table gives each process's peak resident
 memory (the largest of the ranks'), and the wall time of the whole run. A rank that built or
 read the whole scene before keeping its half would peak as high as one process does; a rank
@@ -25,7 +25,7 @@ import sys
 import tempfile
 import time
 
-SCENE = """-- mpi_setup.py's scene: a block of water, made by -v source=lattice|csv|restart
+SCENE = """-- mpi_setup.py's scene: a block of water, made by -v source=lattice|csv|vtu|restart
 local source = var.source
 local s = {spacing}
 if source == "restart" then
@@ -43,6 +43,7 @@ end
 pbf.fix("gravity", "gravity", {{acceleration = {{0, 0, -9.81}}}})
 pbf.fix("pbf", "pbf", {{iterations = 4}})
 pbf.fix("walls", "box", {{}})
+if var.vtk then pbf.fix("vtk", "dump/vtk", {{path = var.vtk, every = 1, fields = {{"velocity"}}}}) end
 pbf.run(1)
 if var.save then pbf.write_restart(var.save) end
 """
@@ -100,7 +101,11 @@ def main():
         with open(script, "w") as f:
             f.write(SCENE.format(spacing=f"{spacing:.6g}", length=length, height=height))
         restart = os.path.join(work, "scene.restart")
-        run(args, binaries[0][1], 1, script, {"source": "lattice", "save": restart}, work)
+        frames = os.path.join(work, "frames")
+        os.makedirs(frames)
+        run(args, binaries[0][1], 1, script,
+            {"source": "lattice", "save": restart, "vtk": os.path.join(frames, "block_*.vtu")}, work)
+        vtu = os.path.join(frames, "block_00000.vtu")
         csv = os.path.join(work, "scene.csv")
         n = int(length / spacing + 1e-9)
         with open(csv, "w") as f:  # the lattice's sites, x fastest
@@ -116,7 +121,7 @@ def main():
             f.writelines(rows)
         particles = sum(1 for _ in open(csv)) - 1
         results = {}
-        for source, file in (("lattice", None), ("csv", csv), ("restart", restart)):
+        for source, file in (("lattice", None), ("csv", csv), ("vtu", vtu), ("restart", restart)):
             for label, binary in binaries:
                 for ranks in (1, 2):
                     variables = {"source": source}
@@ -133,7 +138,7 @@ def main():
         header += f" {label}: 1 process | {label}: 2 ranks, each | 2 ranks / 1 |"
         rule += "---|---|---|"
     lines += [header, rule]
-    for source in ("lattice", "csv", "restart"):
+    for source in ("lattice", "csv", "vtu", "restart"):
         row = f"| {source} |"
         for label, _ in binaries:
             one, two = results[(source, label, 1)], results[(source, label, 2)]

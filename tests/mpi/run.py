@@ -13,7 +13,7 @@ Cases:
   identical_solid  scenarios/spheric_dambreak.lua at 5 cm (PBF, the box obstacle across the
               ranks' boundaries, its load in thermo, pressure probes and gauges): probes.csv and
               thermo.csv.
-  sources     tests/mpi/sources.lua: a particle file, lattices (two on the same sites, one in a
+  sources     tests/mpi/sources.lua: particle files (.csv, and a .vtu frame), lattices (two on the same sites, one in a
               sphere), solids that leave particles out before the first run and after it, a
               lattice added between runs: every rank creates a share of each (about 1/ranks of
               the particles) and the frames and thermo CSV are those of one process.
@@ -163,10 +163,21 @@ def sources(args, work):
             for j in range(15):
                 for i in range(10):
                     f.write(f"{0.01 + 0.02 * i:.6g},{0.01 + 0.02 * j:.6g},{0.01 + 0.02 * k:.6g},0.5,0,0\n")
+    # A block of water as a dump/vtk frame (appended raw arrays), written by one process.
+    maker = os.path.join(work, "make_vtu.lua")
+    with open(maker, "w") as f:
+        f.write('pbf.domain{lo = {0, 0, 0}, hi = {0.8, 0.3, 0.5}}\npbf.kernel_radius(0.04)\npbf.timestep(0.002)\n'
+                'pbf.lattice{lo = {0.62, 0, 0}, hi = {0.78, 0.3, 0.1}, spacing = 0.02, velocity = {-0.3, 0, 0}}\n'
+                'pbf.fix("vtk", "dump/vtk", {path = "block/block_*.vtu", every = 1, fields = {"velocity"}})\n'
+                'pbf.run(0)\n')
+    made = run(args, 1, maker, {}, work)
+    if made.returncode != 0:
+        fail(f"writing the .vtu block: {made.stderr}")
+    files = {"file": path, "vtu": os.path.join(work, "block", "block_00000.vtu")}
     script = os.path.join(HERE, "sources.lua")
-    same_outputs(args, work, script, {"file": path}, ["thermo.csv"], least_frames=4)
+    same_outputs(args, work, script, files, ["thermo.csv"], least_frames=4)
     for ranks in (2, 3):
-        result = run(args, ranks, script, {"file": path, "out": os.path.join(work, f"shares{ranks}")}, work)
+        result = run(args, ranks, script, dict(files, out=os.path.join(work, f"shares{ranks}")), work)
         counts = [line.split("created: ")[1].split(" of ") for line in result.stdout.splitlines() if "created: " in line]
         shares = [int(c[0]) for c in counts]
         total = int(counts[0][1]) if counts else 0
@@ -175,8 +186,8 @@ def sources(args, work):
         if len(shares) != ranks or sum(shares) != total or max(shares) > 1.5 * total / ranks:
             fail(f"{ranks} ranks: each should create about {total}/{ranks} particles; they created {shares}")
         print(f"{ranks} ranks created {shares} of {total} particles")
-    print("a particle file, lattices (coincident sites, a sphere), solids before and after the first run, a lattice "
-          "between runs: frames and thermo.csv identical at 1, 2 and 3 ranks")
+    print("particle files (.csv, .vtu), lattices (coincident sites, a sphere), solids before and after the first "
+          "run, a lattice between runs: frames and thermo.csv identical at 1, 2 and 3 ranks")
 
 
 def scene_file(args, work):

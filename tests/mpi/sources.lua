@@ -1,5 +1,6 @@
 -- tests/mpi/sources.lua: a scene built from every kind of particle source, for the
--- distributed-run tests (tests/mpi/run.py, case "sources"): a particle file (-v file=CSV), a
+-- distributed-run tests (tests/mpi/run.py, case "sources"): particle files (-v file=CSV, -v
+-- vtu=VTU, a dump/vtk frame), a
 -- lattice, a second lattice on some of its sites (coincident particles, moved apart at the
 -- start), a lattice filling a sphere, and a solid across the fluid that leaves particles out
 -- (ids renumbered across the ranks). After the first run a second solid leaves more out (the
@@ -12,6 +13,7 @@ pbf.domain{lo = {0, 0, 0}, hi = {0.8, 0.3, 0.5}}
 pbf.kernel_radius(2 * s)
 pbf.timestep(0.002)
 pbf.read_particles(var.file)                                          -- x < 0.2
+pbf.read_particles(var.vtu)                                           -- x > 0.62, z < 0.1
 pbf.lattice{lo = {0.2, 0, 0}, hi = {0.36, 0.3, 0.2}, spacing = s}
 pbf.lattice{lo = {0.3, 0, 0}, hi = {0.34, 0.04, 0.04}, spacing = s}   -- on the last one's sites
 pbf.lattice{lo = {0.42, 0.07, 0.22}, hi = {0.58, 0.23, 0.38}, center = {0.5, 0.15, 0.3}, radius = 0.08,
