@@ -214,9 +214,7 @@ void Simulation::place_particles() {
   // neighbours alike (engine/distributed/decomposition.hpp); a count that changed them (a
   // solid left particles out) re-cuts the boxes.
   const GridGeometry cells = GridGeometry::of(domain_, h_, P.global_size());
-  const bool same_cells =
-      cells.cell_size == geometry_.cell_size && std::equal(cells.dims, cells.dims + 3, geometry_.dims);
-  if (P.unplaced() == 0 && same_cells) return;
+  if (P.unplaced() == 0 && cells == geometry_) return;
   geometry_ = cells;
   decomposition_.distribute(P, geometry_);
   positions_changed();

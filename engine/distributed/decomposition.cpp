@@ -218,8 +218,7 @@ void Decomposition::distribute(Particles& P, const GridGeometry& grid) {
   P.drop_ghosts();
   // The first time, the tree is cut from every rank's particles (shares of the sources, which
   // together are the whole set); later the particles created since join those placed.
-  const bool same_cells = grid.cell_size == cut_for_.cell_size && std::equal(grid.dims, grid.dims + 3, cut_for_.dims);
-  if (tree_.empty() || !same_cells) balance(P, grid, P.size());  // (more particles may widen the cells)
+  if (tree_.empty() || !(grid == cut_for_)) balance(P, grid, P.size());  // (more particles may widen the cells)
   migrate(P, grid);  // and the load line
   P.mark_placed();
 }

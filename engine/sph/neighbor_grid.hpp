@@ -37,6 +37,7 @@ struct GridGeometry {
   static GridGeometry of(const Domain& domain, double h, std::size_t particles);
   // The cell along `axis` of a coordinate, clamped into the grid (NaN: cell 0).
   long cell_along(int axis, double coordinate) const;
+  bool operator==(const GridGeometry&) const = default;
 };
 
 // A box of cells [lo, hi) along each axis.
