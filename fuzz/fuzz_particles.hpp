@@ -4,6 +4,8 @@
 // interpreting either give consistent columns and particles, or refuse the file with a
 // pbf::Error naming it; adding the particles either works or is a pbf::Error (outside the
 // domain, or the simulation's checks of scale and resolution).
+#include <utility>
+
 #include "engine/core/error.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/io/load_particles.hpp"
@@ -36,7 +38,7 @@ inline void load_particles(const InputFile& input, const std::uint8_t* data, std
     sim.set_domain(domain);
     sim.set_kernel_radius(0.05);
     sim.set_timestep(0.001);
-    add_particles(sim, in, path);
+    add_particles(sim, std::move(in), path);
     check(sim.particles().size() == table.count, "not every particle was added");
   } catch (const Error&) {  // refused, as it may be
   }

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <utility>
 
 #include "engine/core/error.hpp"
 #include "engine/distributed/comm.hpp"
@@ -14,7 +15,7 @@
 
 namespace pbf {
 
-LoadedParticles add_particles(Simulation& sim, const ParticleInput& in, const std::string& source) {
+LoadedParticles add_particles(Simulation& sim, ParticleInput in, const std::string& source) {
   if (sim.kernel_radius() <= 0)
     throw Error(fmt::format("{}: set the kernel radius (pbf.kernel_radius) before reading particles", source));
   try {
@@ -54,9 +55,13 @@ LoadedParticles add_particles(Simulation& sim, const ParticleInput& in, const st
     const real p[3] = {rx[i], ry[i], rz[i]}, v[3] = {real(in.vx[i]), real(in.vy[i]), real(in.vz[i])};
     P.add(p, v, in.has_mass ? real(in.mass[i]) : real(0));
   }
-  LoadedParticles loaded{P.finish_source(first), 0, {}};
+  LoadedParticles loaded{P.finish_source(first), 0, std::move(in.ignored)};
   sim.positions_changed();
-  if (!in.has_mass) {  // the mass rule over the file's particles, wherever they now are
+  const bool has_mass = in.has_mass;
+  // The file's values are in the particles now: freed before the mass rule's neighbour lists.
+  in = ParticleInput{};
+  rx = ry = rz = std::vector<real>{};
+  if (!has_mass) {  // the mass rule over the file's particles, wherever they now are
     const MassEstimate m = file_mass(sim, first_id, first_id + static_cast<std::int64_t>(loaded.count));
     if (m.interior == 0)
       spdlog::warn("{}: no particle is at least h = {} from every face; mass from the nearest-neighbour spacing {:.4g}",
@@ -72,10 +77,8 @@ LoadedParticles add_particles(Simulation& sim, const ParticleInput& in, const st
 }
 
 LoadedParticles load_particle_file(Simulation& sim, const std::string& path) {
-  const ParticleInput in = interpret_particles(read_particle_file(path));
-  LoadedParticles loaded = add_particles(sim, in, path);
-  loaded.ignored = in.ignored;
-  return loaded;
+  ParticleInput in = interpret_particles(read_particle_file(path));  // the file's table freed here
+  return add_particles(sim, std::move(in), path);
 }
 
 }  // namespace pbf

@@ -21,8 +21,9 @@ struct LoadedParticles {
 // This process's share of a file's particles (all of them in one process), in file order;
 // without masses, the mass rule over the whole file. Every position must lie inside the
 // domain (the error names `source` and the particle's 0-based index in the file). Collective in
-// a distributed run.
-LoadedParticles add_particles(Simulation& sim, const ParticleInput& in, const std::string& source);
+// a distributed run. `in` is freed once its particles are added, before the mass rule's
+// neighbour lists are built.
+LoadedParticles add_particles(Simulation& sim, ParticleInput in, const std::string& source);
 
 // A .vtu (for example a dump/vtk frame, filtered in ParaView) or a .csv with a header.
 LoadedParticles load_particle_file(Simulation& sim, const std::string& path);

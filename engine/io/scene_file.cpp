@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 #include <sstream>
 #include <string_view>
+#include <utility>
 
 #include "engine/core/error.hpp"
 #include "engine/core/real.hpp"
@@ -170,7 +171,7 @@ double load_scene(Simulation& sim, const SceneFile& scene) {
   }
   in.first_row = scene.first_row;
   in.total = static_cast<std::size_t>(scene.count);
-  return add_particles(sim, in, scene.path).mass;
+  return add_particles(sim, std::move(in), scene.path).mass;
 }
 
 }  // namespace pbf

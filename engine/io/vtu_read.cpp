@@ -70,8 +70,9 @@ class VtuReader {
       fail("cannot open the file: it is not a regular file (a device, a pipe or a socket)");
     file_.reset(std::fopen(path.c_str(), "rb"));
     if (!file_) fail(fmt::format("cannot open the file ({})", std::strerror(errno)));
-    // The XML is held in memory, up to the appended data's first byte: the appended arrays are
-    // read one at a time (appended_block), and only this process's share of each is kept.
+    // The XML is held in memory, up to the appended data's first byte. Of a raw appended
+    // array this process reads the size header and its share of the rows (Block); a base64
+    // one is read whole, one array at a time, and only the share is kept.
     char buffer[65536];
     bool failed = false;
     try {
@@ -233,14 +234,27 @@ class VtuReader {
     doc_.traverse(walker);
   }
 
-  // The bytes (raw) or characters (base64) of the appended block at `offset`, up to the
-  // next block; `last`: no block follows.
-  std::string appended_block(std::uint64_t offset, bool& last) const {
+  // A binary block: an array's size header and data, in memory (decoded base64) or where it
+  // lies in the file (a raw appended array), whose bytes are then read only where asked.
+  struct Block {
+    std::string_view memory;
+    const VtuReader* file = nullptr;  // set: the block is the file's bytes [at, at + size)
+    std::size_t at = 0, size = 0;
+    std::string bytes(std::size_t from, std::size_t n) const {
+      if (from >= size) return {};
+      n = std::min(n, size - from);
+      return file ? file->read_at(at + from, n) : std::string(memory.substr(from, n));
+    }
+  };
+  static Block in_memory(std::string_view bytes) { return Block{bytes, nullptr, 0, bytes.size()}; }
+
+  // The appended block at `offset`, up to the next block's offset; `last`: no block follows.
+  Block appended_block(std::uint64_t offset, bool& last) const {
     const std::size_t size = block_end_ - block_begin_;
     const auto next = offsets_.upper_bound(offset);
     last = next == offsets_.end() || *next >= size;
     const std::size_t end = last ? size : *next;
-    return read_at(block_begin_ + offset, end - offset);
+    return Block{{}, this, block_begin_ + offset, end - offset};
   }
 
   void locate_block(std::size_t p) {
@@ -293,14 +307,15 @@ class VtuReader {
       c.values.erase(c.values.begin(), c.values.begin() + static_cast<std::ptrdiff_t>(share_.first * k));
       return c;
     }
-    std::string_view data;
-    std::string decoded, block;  // base64 data, decoded, and an appended block; `data` views one
-    auto from_base64 = [&](std::string_view text, bool followed) {
+    Block block;
+    std::string decoded;  // base64 data, decoded
+    auto from_base64 = [&](std::string_view text) {
       decoded = base64(a, text, what);
-      return payload(a, decoded, bytes, what, false, followed);
+      return in_memory(decoded);
     };
+    bool last = true;  // no array's data follow the block
     if (format == "binary") {  // inline base64
-      data = from_base64(a.child_value(), false);
+      block = from_base64(a.child_value());
     } else if (format == "appended") {
       if (block_begin_ == 0)
         fail_at(a, fmt::format("{} is format=\"appended\" but the file has no appended data", what));
@@ -308,57 +323,64 @@ class VtuReader {
       const std::size_t size = block_end_ - block_begin_;
       if (offset >= size)
         fail_at(a, fmt::format("{}: offset {} is beyond the appended data ({} bytes)", what, offset, size));
-      bool last = false;
       block = appended_block(offset, last);
-      // Raw data end in the whitespace before </AppendedData>; base64 skips whitespace anyway.
-      data = base64_block_ ? from_base64(block, !last) : payload(a, block, bytes, what, last, !last);
+      if (base64_block_) block = from_base64(block.bytes(0, block.size));
     } else {
       fail_at(a, fmt::format("{} has format \"{}\" (expected appended, binary or ascii)", what, format));
     }
-    // The bytes are there (payload() checked them): this process's share of the rows.
+    // Raw appended data end in the whitespace before </AppendedData>; base64 skips whitespace.
+    check_payload(a, block, bytes, what, last && format == "appended" && !base64_block_, !last);
+    // This process's share of the rows, after the size header.
     const auto k = static_cast<std::size_t>(c.components);
+    const std::string share = block.bytes(header_size_ + share_.first * k * type->size,
+                                          (share_.end - share_.first) * k * type->size);
     c.values.resize((share_.end - share_.first) * k);
-    type->convert(data.data() + share_.first * k * type->size, c.values.size(), c.values.data());
+    type->convert(share.data(), c.values.size(), c.values.data());
     return c;
+  }
+
+  // The size a block's header of `header` bytes announces (the block holds that many).
+  static std::uint64_t announced(const Block& block, std::size_t header) {
+    std::uint64_t size = 0;
+    std::memcpy(&size, block.bytes(0, header).data(), header);  // little-endian: the low bytes first
+    return size;
   }
 
   // Whether `block` is a size header of `header` bytes announcing `expected` bytes, then
   // those bytes, then nothing but (if `trailing_space`) whitespace.
-  static bool block_fits(std::string_view block, std::size_t header, std::size_t expected, bool trailing_space) {
-    if (block.size() < header) return false;
-    std::uint64_t size = 0;
-    std::memcpy(&size, block.data(), header);  // little-endian: the low bytes first
-    if (size != expected || block.size() - header < size) return false;
-    const std::string_view rest = block.substr(header + size);
-    return rest.empty() || (trailing_space && trim(rest).empty());
+  static bool block_fits(const Block& block, std::size_t header, std::size_t expected, bool trailing_space) {
+    if (block.size < header) return false;
+    const std::uint64_t size = announced(block, header);
+    if (size != expected || block.size - header < size) return false;
+    const std::size_t rest = block.size - header - size;
+    return rest == 0 || (trailing_space && trim(block.bytes(header + size, rest)).empty());
   }
 
-  // The data of one binary block: a byte count (of header_type), then that many bytes,
-  // which must be the `expected` bytes the array needs, and nothing more. Each mismatch
-  // gets its own message; one explained by the other header size names the header_type.
+  // Checks one binary block: a byte count (of header_type), then that many bytes, which
+  // must be the `expected` bytes the array needs, and nothing more. Each mismatch gets its
+  // own message; one explained by the other header size names the header_type.
   // `followed`: the block ends where another array's starts (appended data).
-  std::string_view payload(pugi::xml_node a, std::string_view block, std::size_t expected, const std::string& what,
-                           bool trailing_space, bool followed) const {
-    if (block_fits(block, header_size_, expected, trailing_space)) return block.substr(header_size_, expected);
+  void check_payload(pugi::xml_node a, const Block& block, std::size_t expected, const std::string& what,
+                     bool trailing_space, bool followed) const {
+    if (block_fits(block, header_size_, expected, trailing_space)) return;
     const std::size_t other = header_size_ == 4 ? 8 : 4;
     if (block_fits(block, other, expected, trailing_space))
       fail_at(a, fmt::format("{}: header_type=\"{}\" says block sizes are {}-byte numbers, but the data have "
                              "{}-byte ones: the header_type does not match the data (it should be \"{}\")",
                              what, header_name(header_size_), header_size_, other, header_name(other)));
-    if (block.size() < header_size_) fail_at(a, fmt::format("truncated file: {} ends inside its size header", what));
-    std::uint64_t size = 0;
-    std::memcpy(&size, block.data(), header_size_);
+    if (block.size < header_size_) fail_at(a, fmt::format("truncated file: {} ends inside its size header", what));
+    const std::uint64_t size = announced(block, header_size_);
     if (size != expected)
       fail_at(a, fmt::format("{} holds {} bytes, but NumberOfPoints = {} needs {}", what, size, n_, expected));
-    if (block.size() - header_size_ < size && followed)
+    if (block.size - header_size_ < size && followed)
       fail_at(a, fmt::format("{} needs {} bytes, but the next array's data start after {} (their offsets overlap)",
-                             what, size, block.size() - header_size_));
-    if (block.size() - header_size_ < size)
+                             what, size, block.size - header_size_));
+    if (block.size - header_size_ < size)
       fail_at(a, fmt::format("truncated file: {} needs {} bytes, only {} are there", what, size,
-                             block.size() - header_size_));
+                             block.size - header_size_));
     fail_at(a, fmt::format("{}: its block holds {} bytes after the {} its size header announces (blocks overlap, or "
                            "the header_type does not match the data)",
-                           what, block.size() - header_size_ - size, size));
+                           what, block.size - header_size_ - size, size));
   }
 
   static const char* header_name(std::size_t size) { return size == 4 ? "UInt32" : "UInt64"; }
