@@ -452,6 +452,36 @@ TEST(Restart, CtrlCWritesARestartAndExitsWith130) {
   EXPECT_NE(log.find(fmt::format("interrupted (Ctrl-C) after step {}", summary.step)), std::string::npos) << log;
 }
 
+TEST(Restart, SigUsr1WritesARestartAndTheRunGoesOn) {
+  const auto dir = temp_dir("restart-sigusr1");
+  // kScene without its restart fix: the restart goes to signal.STEP.restart in the current
+  // directory. Step 5's callback waits until the signal was sent, so that it comes in step 5.
+  const std::string scene = kScene.substr(0, kScene.find("pbf.fix('save'"));
+  write_file(dir / "a.lua", scene + "pbf.every('mark', 1, function(step)\n"
+                                    "  if step ~= 5 or var.restart then return end\n"
+                                    "  io.open(var.dir .. '/running', 'w'):close()\n"
+                                    "  for i = 1, 10000000 do\n"
+                                    "    local sent = io.open(var.dir .. '/sent')\n"
+                                    "    if sent then sent:close() break end\n"
+                                    "  end end)\n"
+                                    "pbf.run(10 - pbf.step())\n"
+                                    "pbf.write_restart(var.final)\n");
+  const std::string command = fmt::format(
+      "cd {0} && ( {1} run a.lua -v dir={0} -v final={0}/signalled.final --threads 1 > log 2>&1 & pid=$!; "
+      "for i in $(seq 600); do [ -e running ] && break; sleep 0.05; done; kill -USR1 $pid; touch sent; "
+      "wait $pid; echo $? > code )",
+      dir.string(), PBF_BINARY);
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string log = read_file(dir / "log");
+  ASSERT_EQ(read_file(dir / "code"), "0\n") << log;
+  EXPECT_NE(log.find("SIGUSR1: wrote restart 'signal.5.restart' after step 5"), std::string::npos) << log;
+  // The run went on to step 10; continued from the signal's restart it ends with the same bits.
+  auto continued = run_engine(fmt::format("run {0}/a.lua -v dir={0} -v final={0}/continued.final -v restart={0}/signal.5.restart",
+                                          dir.string()));
+  ASSERT_EQ(continued.code, 0) << continued.output;
+  EXPECT_TRUE(read_file(dir / "signalled.final") == read_file(dir / "continued.final"));
+}
+
 }  // namespace
 
 // A run with a solid read from a mesh file continues bit for bit from a restart; a restart

@@ -1,6 +1,7 @@
 #include "engine/core/interrupt.hpp"
 
 #include <csignal>
+#include <span>
 #include <unistd.h>
 
 #include "engine/distributed/comm.hpp"
@@ -9,8 +10,8 @@ namespace pbf {
 
 namespace {
 
-volatile std::sig_atomic_t interrupt_flag = 0;
-struct sigaction previous_interrupt, previous_terminate;
+volatile std::sig_atomic_t interrupt_flag = 0, restart_flag = 0;
+struct sigaction previous_interrupt, previous_terminate, previous_user1;
 
 // A rank told to stop while it waits for a rank that died (mpirun sends SIGTERM to the others
 // when one crashes) would never reach the end of its step: it ends this long after the signal
@@ -23,6 +24,8 @@ extern "C" void on_interrupt(int signal) {
   if (signal == SIGTERM) alarm(kGraceSeconds);  // SIGALRM's default action ends the process
 }
 
+extern "C" void on_restart_request(int) { restart_flag = 1; }
+
 }  // namespace
 
 InterruptWatch::InterruptWatch() {
@@ -34,19 +37,23 @@ InterruptWatch::InterruptWatch() {
   // mpirun forwards SIGTERM to every rank (and turns Ctrl-C into it), as a batch system's
   // time limit does: a distributed run takes it as Ctrl-C.
   if (comm::distributed()) sigaction(SIGTERM, &action, &previous_terminate);
+  restart_flag = 0;
+  action.sa_handler = on_restart_request;
+  sigaction(SIGUSR1, &action, &previous_user1);
 }
 
 InterruptWatch::~InterruptWatch() {
   alarm(0);
   sigaction(SIGINT, &previous_interrupt, nullptr);
   if (comm::distributed()) sigaction(SIGTERM, &previous_terminate, nullptr);
+  sigaction(SIGUSR1, &previous_user1, nullptr);
 }
 
-// The ranks see a signal at slightly different times: they stop after the same step, the
-// first at which any of them saw it.
-bool InterruptWatch::requested() {
-  if (!comm::distributed()) return interrupt_flag != 0;
-  return comm::max(interrupt_flag != 0 ? 1.0 : 0.0) > 0;
+InterruptWatch::Requests InterruptWatch::requested() {
+  double seen[2] = {interrupt_flag != 0 ? 1.0 : 0.0, restart_flag != 0 ? 1.0 : 0.0};
+  if (seen[1] > 0) restart_flag = 0;  // one restart a signal (one arriving now waits for the next step)
+  comm::max(std::span<double>(seen));
+  return {seen[0] > 0, seen[1] > 0};
 }
 
 }  // namespace pbf

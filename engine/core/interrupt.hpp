@@ -1,8 +1,9 @@
 #pragma once
-// Ctrl-C during a run. While an InterruptWatch exists, the first SIGINT only sets a flag:
-// the run loop finishes the step, writes a restart and stops cleanly. The handler then
+// Signals during a run. While an InterruptWatch exists, the first SIGINT (Ctrl-C) only sets a
+// flag: the run loop finishes the step, writes a restart and stops cleanly. The handler then
 // restores the default action, so a second Ctrl-C ends the process at once. A distributed run
-// takes SIGTERM the same way, and requested() is then collective.
+// takes SIGTERM the same way. SIGUSR1 (what a batch system sends ahead of a time limit when
+// asked, Slurm's --signal=USR1@SECONDS) asks for a restart after the step, and the run goes on.
 #include <cstdint>
 #include <string>
 
@@ -16,7 +17,13 @@ class InterruptWatch {
   ~InterruptWatch();
   InterruptWatch(const InterruptWatch&) = delete;
   InterruptWatch& operator=(const InterruptWatch&) = delete;
-  static bool requested();
+  // What the signals since the last call ask for. Collective in a distributed run (one
+  // reduction): the ranks see a signal at slightly different times, and all act after the
+  // same step, the first at which any of them saw it.
+  struct Requests {
+    bool stop = false, restart = false;
+  };
+  static Requests requested();
 };
 
 // A run stopped by Ctrl-C after writing a restart; the command line exits with 130.

@@ -45,6 +45,7 @@ class RunLoop {
   std::size_t first_non_finite() const;
   void check_clumping() const;
   [[noreturn]] void stop_interrupted();
+  std::string write_restart_now(const char* prefix);
   double now() const { return omp_get_wtime(); }
 
   Simulation& sim_;
@@ -245,7 +246,13 @@ void RunLoop::run(std::int64_t steps, double until) {
                               e.what(), note.path, note.step),
                   e.located());
     }
-    if (InterruptWatch::requested()) stop_interrupted();
+    const InterruptWatch::Requests signals = InterruptWatch::requested();
+    if (signals.stop) stop_interrupted();
+    if (signals.restart) {
+      const std::string path = write_restart_now("signal");
+      spdlog::info("SIGUSR1: wrote restart '{}' after step {} (t = {} s); the run goes on", path, sim_.step_,
+                   sim_.time());
+    }
     if (now() >= next_progress) {
       const double elapsed = now() - start;
       const double done = steps >= 0 ? static_cast<double>(sim_.step_ - first) / static_cast<double>(steps)
@@ -371,16 +378,23 @@ void RunLoop::call(Stage stage, Fix& fix, int iteration) {
   }
 }
 
-// Ctrl-C: the step is complete; flush the fixes' files, save the state, stop.
-void RunLoop::stop_interrupted() {
-  for (const auto& f : sim_.fixes_) f->finish(sim_);
+// A restart after a complete step, asked for by a signal: where the `restart` fix writes its
+// files, else PREFIX.STEP.restart in the current directory.
+std::string RunLoop::write_restart_now(const char* prefix) {
   std::string path;
   for (const auto& f : sim_.fixes_)
     if (auto written = f->write_restart_now(sim_)) path = *written;
   if (path.empty()) {
-    path = fmt::format("interrupted.{}.restart", sim_.step_);
+    path = fmt::format("{}.{}.restart", prefix, sim_.step_);
     write_restart(sim_, path);
   }
+  return path;
+}
+
+// Ctrl-C: the step is complete; flush the fixes' files, save the state, stop.
+void RunLoop::stop_interrupted() {
+  for (const auto& f : sim_.fixes_) f->finish(sim_);
+  const std::string path = write_restart_now("interrupted");
   throw Interrupted(fmt::format("interrupted (Ctrl-C) after step {} (t = {} s): wrote restart '{}'; continue "
                                 "with pbf.read_restart('{}')",
                                 sim_.step_, sim_.time(), path, path),

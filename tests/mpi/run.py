@@ -28,6 +28,9 @@ Cases:
               message, naming the rank, once; exit code 1; no rank left running.
   per_particle  pbf.value of the per-particle density, printed by the script (once: print is
               rank 0's): the same line at 1, 2 and 3 ranks.
+  signals     SIGUSR1 and SIGTERM sent to mpirun (2 ranks): a restart and the run goes on; a
+              restart and a stop. Each restart continued (on 1 process, on 3 ranks) ends with
+              the bits of the run that went on.
 
 Open MPI is run as the CI runs it: as root it needs OMPI_ALLOW_RUN_AS_ROOT(_CONFIRM); in
 containers the vader transport's single-copy mechanism is off; --oversubscribe lets 3 ranks
@@ -36,8 +39,11 @@ share 2 cores, and idle ranks yield (mpi_yield_when_idle) instead of spinning.
 import argparse
 import filecmp
 import os
+import re
+import signal
 import subprocess
 import sys
+import time
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -66,12 +72,13 @@ def fail(message):
     sys.exit(1)
 
 
-def same_outputs(args, work, script, variables, files, least_frames=5):
-    """Runs at 1, 2 and 3 ranks; fails unless every file the 1-process run wrote in its output
-    directory (text frames, CSVs, pictures; not its subdirectories) has the same bytes in the
-    others', and `files` are among them. Returns the 1-process output directory and its frames."""
+def same_outputs(args, work, script, variables, files, least_frames=5, rank_counts=(1, 2, 3)):
+    """Runs at each of rank_counts (1 first); fails unless every file the 1-process run wrote in
+    its output directory (text frames, CSVs, pictures; not its subdirectories) has the same
+    bytes in the others', and `files` are among them. Returns the 1-process output directory
+    and its frames."""
     outputs = {}
-    for ranks in (1, 2, 3):
+    for ranks in rank_counts:
         out = os.path.join(work, f"r{ranks}")
         result = run(args, ranks, script, dict(variables, out=out), work)
         if result.returncode != 0:
@@ -85,7 +92,7 @@ def same_outputs(args, work, script, variables, files, least_frames=5):
     for name in files:
         if name not in written:
             fail(f"the 1-process run wrote no {name}")
-    for ranks in (2, 3):
+    for ranks in rank_counts[1:]:
         for name in written:
             a, b = os.path.join(outputs[1], name), os.path.join(outputs[ranks], name)
             if not os.path.exists(b) or not filecmp.cmp(a, b, shallow=False):
@@ -118,10 +125,11 @@ def vtk_rows(directory, frame):
 
 
 def identical(args, work):
-    out, frames = same_outputs(args, work, os.path.join(HERE, "dambreak.lua"), {}, ["thermo.csv", "probes.csv"])
+    out, frames = same_outputs(args, work, os.path.join(HERE, "dambreak.lua"), {}, ["thermo.csv", "probes.csv"],
+                               rank_counts=(1, 2, 3, 4))
     for frame in range(len(frames)):
         expected = vtk_rows(out, frame)
-        for ranks in (2, 3):
+        for ranks in (2, 3, 4):
             if vtk_rows(os.path.join(work, f"r{ranks}"), frame) != expected:
                 fail(f"VTK frame {frame}: the pieces of {ranks} ranks hold other rows than the 1-process file")
     with open(os.path.join(work, "r3", "vtk", "frame.pvd")) as f:
@@ -133,7 +141,7 @@ def identical(args, work):
     farthest = max(float(r[1]) for r in rows)
     if farthest < 0.6:
         fail(f"the fluid reached only x = {farthest}: it did not cross the ranks' boundaries")
-    print(f"{len(frames)} frames, probes.csv, thermo.csv and the VTK frames' rows identical at 1, 2 and 3 ranks; "
+    print(f"{len(frames)} frames, probes.csv, thermo.csv and the VTK frames' rows identical at 1, 2, 3 and 4 ranks; "
           f"front at x = "
           f"{farthest:.3f} m")
 
@@ -295,6 +303,75 @@ print(#rho, string.format("%.17g %.17g %.17g", rho[1], rho[500], rho[#rho]))
         fail(f"pbf.value of a per-particle compute differs, or printed more than once: {lines}")
     print(f"pbf.value('rho') printed once, the same at 1, 2 and 3 ranks: {lines[1][0]}")
 
+def signals(args, work):
+    """mpirun forwards SIGUSR1 and SIGTERM to every rank: SIGUSR1 gives a restart and the run
+    goes on; SIGTERM a restart and a clean stop. Both restarts continue as the run never stopped."""
+    # From step 5 on, each step takes 60 ms more: mpirun takes up to a second to forward a
+    # signal, which then comes before step 60, the run's end. (Not much more: mpirun kills the
+    # ranks 1 s after it forwards SIGTERM.)
+    path = os.path.join(work, "signals.lua")
+    with open(path, "w") as f:
+        f.write("""if var.restart then pbf.read_restart(var.restart) else
+  pbf.domain{lo = {0, 0, 0}, hi = {1, 1, 1}}
+  pbf.kernel_radius(0.1)
+  pbf.timestep(0.001)
+  pbf.lattice{lo = {0, 0, 0}, hi = {0.5, 0.5, 0.5}, spacing = 0.05}
+end
+pbf.fix("gravity", "gravity", {acceleration = {0, 0, -9.81}})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.fix("frames", "dump/text", {path = var.out .. "/f_*.txt", every = 60})
+pbf.every("slow", 1, function(step)
+  if step < 5 or var.restart then return end
+  if step == 5 then io.open(var.dir .. "/running", "w"):close() end
+  local start = os.clock()
+  while os.clock() - start < 0.06 do end
+end)
+pbf.run(60 - pbf.step())
+""")
+
+    def signalled(name, which, ranks):
+        where = os.path.join(work, name)
+        os.makedirs(where)
+        command = [args.mpirun, "-q", "--oversubscribe", "--bind-to", "none", "-np", str(ranks), args.binary, "run",
+                   path, "--log", "none", "-v", f"dir={where}", "-v", f"out={where}"]
+        launched = subprocess.Popen(command, cwd=where, env=environment(), stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, text=True)
+        for _ in range(2400):
+            if os.path.exists(os.path.join(where, "running")) or launched.poll() is not None:
+                break
+            time.sleep(0.05)
+        launched.send_signal(which)
+        out, err = launched.communicate(timeout=TIMEOUT)
+        return where, launched.returncode, out + err
+
+    def continued(name, restart, ranks):  # the frame of step 60
+        out = os.path.join(work, name)
+        result = run(args, ranks, path, {"dir": work, "restart": restart, "out": out}, work)
+        if result.returncode != 0:
+            fail(f"{name}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+        return os.path.join(out, "f_00001.txt")
+
+    where, code, log = signalled("usr1", signal.SIGUSR1, 2)
+    found = re.search(r"SIGUSR1: wrote restart '([^']+)' after step (\d+)", log)
+    if code != 0 or not found or log.count("SIGUSR1: wrote restart") != 1:
+        fail(f"SIGUSR1 at 2 ranks: exit {code}, expected one restart and the run to go on:\n{log}")
+    straight = os.path.join(where, "f_00001.txt")
+    on_one = continued("usr1_on1", os.path.join(where, found.group(1)), 1)
+    if not filecmp.cmp(straight, on_one, shallow=False):
+        fail("the SIGUSR1 restart continued on 1 process ends with other bits than the run it was written in")
+
+    where, code, log = signalled("term", signal.SIGTERM, 2)
+    stopped = re.search(r"interrupted \(Ctrl-C\) after step (\d+) .*wrote restart '([^']+)'", log)
+    if code == 0 or not stopped or os.path.exists(os.path.join(where, "f_00001.txt")):
+        fail(f"SIGTERM at 2 ranks: exit {code}, expected a restart and a stop before the script's end:\n{log}")
+    on_three = continued("term_on3", os.path.join(where, stopped.group(2)), 3)
+    if not filecmp.cmp(straight, on_three, shallow=False):
+        fail("the SIGTERM restart continued on 3 ranks ends with other bits than the run that never stopped")
+    print(f"SIGUSR1: restart after step {found.group(2)}, the run went on; SIGTERM: restart after step "
+          f"{stopped.group(1)}, exit {code}; each continued (on 1 process, on 3 ranks) to the same final state")
+
+
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -302,7 +379,7 @@ def main():
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
                         choices=["identical", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "script_error",
-                                 "rank_error", "per_particle"])
+                                 "rank_error", "per_particle", "signals"])
     args = parser.parse_args()
     args.binary = os.path.abspath(args.binary)
     with tempfile.TemporaryDirectory() as work:
