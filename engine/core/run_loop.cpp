@@ -1,5 +1,5 @@
-// The run loop: stages in order, fixes within a stage by role then script order, every
-// hook timed, a blow-up caught after the hook that produced it.
+// The run loop (engine/core/run_loop.hpp): stages in order, fixes within a stage by role then
+// script order, every hook timed, a blow-up caught after the hook that produced it.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,55 +9,12 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/interrupt.hpp"
-#include "engine/io/restart.hpp"
 #include "engine/core/parallel.hpp"
-#include "engine/core/simulation.hpp"
+#include "engine/core/run_loop.hpp"
 #include "engine/distributed/comm.hpp"
 #include "engine/sph/separate_coincident.hpp"
 
 namespace pbf {
-
-constexpr Role kRoles[] = {Role::solver, Role::other, Role::boundary, Role::output};
-// A run of more steps is refused (days of computing, or an end time or a time step in the
-// wrong unit); one of more than kManySteps gets a warning.
-constexpr double kMostSteps = 1e9, kManySteps = 1e7;
-
-class RunLoop {
- public:
-  explicit RunLoop(Simulation& sim) : sim_(sim) {}
-  // `steps` steps, or (steps < 0) until the time reaches `until`.
-  void run(std::int64_t steps, double until);
-
- private:
-  struct Hook {
-    Fix* fix;
-    std::size_t row;  // timing row
-  };
-  void plan(std::int64_t steps, double until);
-  void prepare();
-  void check_start_state() const;
-  void check_pipeline() const;
-  void distribute();
-  void step();
-  void run_stage(Stage stage, int iteration = 0);
-  void call(Stage stage, Fix& fix, int iteration);
-  void check_finite(Stage stage, const Fix& fix) const;
-  std::size_t first_non_finite() const;
-  void check_clumping() const;
-  [[noreturn]] void stop_interrupted();
-  std::string write_restart_now(const char* prefix);
-  double now() const { return omp_get_wtime(); }
-
-  Simulation& sim_;
-  TimingTable& timing_ = sim_.timing_;
-  std::array<std::vector<Hook>, kStageCount> hooks_;
-  int iterations_ = 1;
-  bool neighbors_ = false;
-  std::size_t row_reorder_ = 0, row_binning_ = 0, row_lists_ = 0, row_checks_ = 0, row_thermo_ = 0, row_migrate_ = 0, row_ghosts_ = 0;
-  double neighbor_mean_sum_ = 0;
-  long long neighbor_builds_ = 0;
-  double full_neighborhood_ = 0;  // particles within h of one at rest density
-};
 
 void Simulation::run(std::int64_t steps) {
   if (steps < 0) throw Error(fmt::format("run: the number of steps must be >= 0, got {}", steps));
@@ -153,62 +110,6 @@ void RunLoop::distribute() {
                               "(without mpirun)",
                               c->id(), c->style()));
   sim_.place_particles();
-}
-
-// What no single fix can see: a force style without an integrator of accelerations.
-// (Two fixes with one job, two integrators among them, are refused when added.)
-void RunLoop::check_pipeline() const {
-  const Fix* integrator = sim_.integrator();
-  for (const auto& f : sim_.fixes_) {
-    if (!f->adds_accelerations() || (integrator && integrator->integration() == Integration::accelerations)) continue;
-    std::string message = fmt::format("fix '{}' ({}): {} adds accelerations, but no fix integrates them", f->id(),
-                                      f->style(), f->style());
-    if (integrator)
-      message += fmt::format(" (fix '{}' ({}) moves positions itself: use one solver)", integrator->id(),
-                             integrator->style());
-    else
-      message += ": add pbf.fix(\"integrator\", \"leapfrog\", {})";
-    throw Error(message);
-  }
-}
-
-// How long the run takes, decided before anything starts: a run that would not end in any
-// reasonable time, or whose steps no longer move the clock, is refused instead of left to spin.
-void RunLoop::plan(std::int64_t steps, double until) {
-  const double t = sim_.time(), dt = sim_.dt_;
-  const std::string what = steps >= 0 ? fmt::format("run({})", steps) : fmt::format("run_until({})", until);
-  if (t + dt == t)
-    throw Error(fmt::format("{}: the time step {} s vanishes against the time {} s (t + dt == t): the clock cannot "
-                            "advance",
-                            what, dt, t));
-  const double count = steps >= 0 ? static_cast<double>(steps) : std::max(0.0, std::ceil((until - t) / dt - 1e-9));
-  if (count > kMostSteps)
-    throw Error(fmt::format("{}: from t = {} s at dt = {} s that is {:.3g} steps, more than {:.0e}: an end time or a "
-                            "time step in the wrong unit?",
-                            what, t, dt, count, kMostSteps));
-  if (count > kManySteps)
-    spdlog::warn("{}: {:.3g} steps of {} s ahead (more than {:.0e}): this run will take long", what, count, dt,
-                 kManySteps);
-  sim_.run_plan_ = {count, steps >= 0 ? t + count * dt : until};
-}
-
-// The state a run starts from must be one a step can advance: finite, and no particle so
-// fast that one step carries it across the whole domain (it would leave at once).
-void RunLoop::check_start_state() const {
-  const auto& P = sim_.particles_;
-  if (const std::size_t i = first_non_finite(); i < P.size())
-    throw Error(fmt::format("particle {} has a non-finite position or velocity ({} {} {}, {} {} {}): the run cannot start",
-                            P.ids()[i], P.x()[i], P.y()[i], P.z()[i], P.vx()[i], P.vy()[i], P.vz()[i]));
-  double widest = 0;
-  for (int a = 0; a < 3; ++a) widest = std::max(widest, sim_.domain_.extent(a));
-  const real* v[3] = {P.vx(), P.vy(), P.vz()};
-  for (std::size_t i = 0; i < P.size(); ++i)
-    for (int a = 0; a < 3; ++a)
-      if (std::fabs(double(v[a][i])) * sim_.dt_ > widest)
-        throw Error(fmt::format("particle {} has velocity {} m/s along {}: one step of {} s carries it {:.3g} m, "
-                                "farther than the whole domain ({} m) is wide",
-                                P.ids()[i], v[a][i], "xyz"[a], sim_.dt_, std::fabs(double(v[a][i])) * sim_.dt_,
-                                widest));
 }
 
 void RunLoop::run(std::int64_t steps, double until) {
@@ -376,68 +277,6 @@ void RunLoop::call(Stage stage, Fix& fix, int iteration) {
     throw Error(fmt::format("step {}: fix '{}' ({}): {}", sim_.step_ + (stage == Stage::end_of_step ? 0 : 1), fix.id(),
                             fix.style(), e.what()));
   }
-}
-
-// A restart after a complete step, asked for by a signal: where the `restart` fix writes its
-// files, else PREFIX.STEP.restart in the current directory.
-std::string RunLoop::write_restart_now(const char* prefix) {
-  std::string path;
-  for (const auto& f : sim_.fixes_)
-    if (auto written = f->write_restart_now(sim_)) path = *written;
-  if (path.empty()) {
-    path = fmt::format("{}.{}.restart", prefix, sim_.step_);
-    write_restart(sim_, path);
-  }
-  return path;
-}
-
-// Ctrl-C: the step is complete; flush the fixes' files, save the state, stop.
-void RunLoop::stop_interrupted() {
-  for (const auto& f : sim_.fixes_) f->finish(sim_);
-  const std::string path = write_restart_now("interrupted");
-  throw Interrupted(fmt::format("interrupted (Ctrl-C) after step {} (t = {} s): wrote restart '{}'; continue "
-                                "with pbf.read_restart('{}')",
-                                sim_.step_, sim_.time(), path, path),
-                    path);
-}
-
-// Particles packed at many times the rest density: the solver has failed (a time step too
-// large, an unstable setting). Stop before the neighbour lists grow toward N^2 memory.
-void RunLoop::check_clumping() const {
-  const auto& grid = sim_.grid_;
-  std::size_t first = 0;
-  while (first < grid.particle_count() && grid.count(first) <= 20 * full_neighborhood_ + 100) ++first;
-  throw Error(fmt::format(
-      "step {}: the fluid has collapsed into clumps: particle {} has {} neighbours within h, where a particle at "
-      "rest density has about {:.0f} (a time step too large for the solver, or an unstable setting such as a "
-      "two-sided constraint without wall density)",
-      sim_.step_ + 1, sim_.particles_.ids()[first], grid.count(first), full_neighborhood_));
-}
-
-// The first particle (in memory order) whose position or velocity is NaN or infinite; n if none.
-std::size_t RunLoop::first_non_finite() const {
-  const auto& P = sim_.particles_;
-  const real *x = P.x(), *y = P.y(), *z = P.z(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
-  const std::size_t n = P.size();
-  std::size_t first = n;
-  // x * 0 is NaN exactly when x is NaN or infinite; the sum vectorises.
-#pragma omp parallel for schedule(static) reduction(min : first)
-  for (std::size_t i = 0; i < n; ++i) {
-    const real s = x[i] * 0 + y[i] * 0 + z[i] * 0 + vx[i] * 0 + vy[i] * 0 + vz[i] * 0;
-    if (s != s) first = std::min(first, i);
-  }
-  return first;
-}
-
-void RunLoop::check_finite(Stage stage, const Fix& fix) const {
-  const std::size_t first = first_non_finite();
-  if (first == sim_.particles_.size()) return;
-  const auto& P = sim_.particles_;
-  throw Error(fmt::format(
-      "step {}: the simulation blew up: particle {} has a non-finite position or velocity "
-      "(position {} {} {}, velocity {} {} {}) after fix '{}' ({}) in stage {}",
-      sim_.step_ + 1, P.ids()[first], P.x()[first], P.y()[first], P.z()[first], P.vx()[first], P.vy()[first],
-      P.vz()[first], fix.id(), fix.style(), stage_name(stage)));
 }
 
 }  // namespace pbf
