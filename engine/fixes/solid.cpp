@@ -40,6 +40,7 @@
 #include "engine/geometry/mesh_file.hpp"
 #include "engine/geometry/motion.hpp"
 #include "engine/geometry/solid_map.hpp"
+#include "engine/geometry/wall_contact.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/density_boundary.hpp"
 #include "engine/sph/mass.hpp"
@@ -301,7 +302,7 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
       real p[3] = {x[i], y[i], z[i]}, b[3];
       to_frame(now_, p, b);
       const real p0[3] = {start_[0][i], start_[1][i], start_[2][i]};
-      const Contact contact = keep_out(p0, start_distance_[i], b);
+      const Contact contact = keep_out(map_, contact_distances(), p0, start_distance_[i], b);
       if (contact == Contact::lost) lost = std::min(lost, i);
       if (contact == Contact::moved) to_world(now_, b, p);
       for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], lo[a], hi[a]);
@@ -378,8 +379,6 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
   }
 
  private:
-  enum class Contact { none, moved, lost };
-
   // Particles are kept a hair in front of the surface, above the map's rounding (a mesh's
   // distances are single precision), so that a wall on a face of the domain never leaves one
   // outside it; within twice the hair a particle touches the wall.
@@ -443,63 +442,9 @@ class Solid : public Fix, public DensityBoundary, public SolidBody {
     for (int a = 0; a < 3; ++a) g[a] = real(r[a]);
   }
 
-  // Whether a particle that started the step `start_distance` from the wall and has moved
-  // `moved` since is still farther than `reach` from it, without a lookup: a distance changes
-  // no faster than the position (|grad d| = 1), and 1.25 allows for the map's spline. Most of
-  // the fluid is far from the walls, and this spares it the map in every projection.
-  static bool far_from_wall(real start_distance, real moved, real reach) {
-    return real(1.25) * moved < start_distance - reach;
-  }
-
-  // Moves p out of the wall along the path the particle took this step from p0, where it
-  // started at `start_distance` from the wall (both in the wall's frame). Lost when the
-  // particle is deep inside the wall, which projection cannot undo.
-  Contact keep_out(const real p0[3], real start_distance, real p[3]) const {
-    real d, g[3];
-    const real step[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
-    const real len = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
-    const real hair = real(this->hair()), gap = real(this->gap()), reach = gap - hair / 2;
-    if (far_from_wall(start_distance, len, reach)) return Contact::none;
-    const auto where = map_.distance(p[0], p[1], p[2], d, nullptr);
-    const bool inside = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < reach);
-    if (!inside && len < start_distance - reach) return Contact::none;  // cannot have reached the wall
-    // March from the start: the first point at or behind the surface is where it met the wall.
-    const real min_step = real(0.25 * cell_size());
-    real s = 0, hit[3], dh = 0, gh[3];
-    bool met = false;
-    while (true) {
-      for (int a = 0; a < 3; ++a) hit[a] = p0[a] + (len > 0 ? s / len : 0) * step[a];
-      const auto w = map_.distance(hit[0], hit[1], hit[2], dh, gh);
-      if (w == SolidMap::Where::wall) return Contact::lost;
-      if (w == SolidMap::Where::near && dh < reach) {
-        met = true;
-        break;
-      }
-      if (s >= len) break;
-      s = std::min(len, s + std::max(w == SolidMap::Where::fluid ? real(map_.far_distance()) : dh, min_step));
-    }
-    if (!met) return Contact::none;  // passed near the wall without touching it
-    // Take away the motion into the wall at the contact point, keep the motion along it.
-    const real gl = std::sqrt(gh[0] * gh[0] + gh[1] * gh[1] + gh[2] * gh[2]);
-    if (gl > 0) {
-      // p's distance in front of the tangent plane at the contact
-      const real into = ((p[0] - hit[0]) * gh[0] + (p[1] - hit[1]) * gh[1] + (p[2] - hit[2]) * gh[2]) / gl + dh;
-      if (into < gap)
-        for (int a = 0; a < 3; ++a) p[a] -= (into - gap) * gh[a] / gl;
-    }
-    // To the gap in front of the surface: steps of the missing distance along the distance's
-    // gradient (one for a flat wall). Not Newton steps, d / |grad d|: in a cell at an edge or a
-    // corner the interpolated distance is flat in places, and a small gradient would throw the
-    // particle across the domain.
-    for (int it = 0; it < 4; ++it) {
-      const auto w = map_.distance(p[0], p[1], p[2], d, g);
-      if (w == SolidMap::Where::wall) return Contact::lost;
-      if (w == SolidMap::Where::fluid || d >= reach) break;
-      const real gl = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-      if (gl == 0) break;
-      for (int a = 0; a < 3; ++a) p[a] -= (d - gap) * g[a] / gl;
-    }
-    return Contact::moved;
+  // Where projection puts particles, for keep_out (engine/geometry/wall_contact.hpp).
+  ContactDistances contact_distances() const {
+    return {real(hair()), real(gap()), real(0.25 * cell_size())};
   }
 
   // An obstacle thinner than the particle spacing lets particles through between its nodes.
