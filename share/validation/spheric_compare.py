@@ -19,8 +19,9 @@ Over 0 <= t <= t-max (2 s) it computes, for the simulation and the measurement a
     raw and after a 5 ms running mean (both series on their own samples), and P1's mean
     from 0.6 to 1.0 s, after the impact.
 It prints markdown tables (and writes them to --table) and writes DIR/spheric_heights.png
-(the four gauges), DIR/spheric_pressures.png (P1-P4) and DIR/spheric_p1_impact.png (P1
-from 0.3 to 0.7 s, raw and smoothed), measured in black.
+(the four gauges), DIR/spheric_pressures.png (P1-P4), DIR/spheric_p1_impact.png (P1
+from 0.3 to 0.7 s, raw and smoothed) and DIR/spheric_lee.png (the gauge at x = 0.496 m
+from 0.8 to 1.3 s), measured in black.
 Simulated columns: time, P.P1..P.P8 (Pa), H.x0496, H.x0992, H.x1488, H.x2638 (m); a run
 without P columns (run with -v probes=0, or a probe style without pressure) gets "n/a" in
 the pressure table.
@@ -304,6 +305,25 @@ def main():
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(args.out_dir, "spheric_p1_impact.png"), dpi=110)
+    plt.close(fig)
+
+    # The lee gauge (x = 0.496 m), close up, with the levels at which its arrival is read.
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    m = (tm >= 0.8) & (tm <= min(1.3, t_max))
+    ax.plot(tm[m], meas["h_x0.496_m"][m], color="k", lw=1.6, label="measured (MARIN)")
+    for k, r in enumerate(runs):
+        if "H.x0496" in r["sim"]:
+            m = (r["t"] >= 0.8) & (r["t"] <= min(1.3, t_max))
+            ax.plot(r["t"][m], r["sim"]["H.x0496"][m], color=colors[k % len(colors)], lw=1, label=r["label"])
+    for level in (args.threshold, 0.1, 0.15):
+        ax.axhline(level, color="0.5", lw=0.6, ls=":")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("height (m)")
+    ax.set_title(f"SPHERIC Test 2: the gauge behind the box (x = 0.496 m); dotted: {args.threshold:g}, 0.1, 0.15 m")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out_dir, "spheric_lee.png"), dpi=110)
     plt.close(fig)
 
 
