@@ -286,6 +286,17 @@ def main():
     four_panels([(lab, col, f"pressure {lab}") for lab, col in PRESSURES], "P.", 0.3, 1000, 1.2, 0.9, "p (kPa)",
                 "SPHERIC Test 2: pressures on the box's front face", "spheric_pressures.png")
 
+    def one_panel(fig, ax, ylabel, title, name):
+        """Labels, grid and legend of a one-panel close-up, then the file."""
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(ylabel)
+        ax.set_title(title)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out_dir, name), dpi=110)
+        plt.close(fig)
+
     # The impact on P1, close up: raw samples (thin) and the 5 ms running mean (thick).
     fig, ax = plt.subplots(figsize=(8, 4.5))
     m = (tm >= 0.3) & (tm <= 0.7)
@@ -298,14 +309,9 @@ def main():
             ax.plot(r["t"][m], r["sim"]["P.P1"][m] / 1000, color=c, lw=0.8, alpha=0.6)
             ax.plot(r["t"][m], running_mean(r["t"], r["sim"]["P.P1"], SMOOTH)[m] / 1000, color=c, lw=1.8,
                     label=r["label"])
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("p (kPa)")
-    ax.set_title(f"SPHERIC Test 2: the impact on P1 (thin: samples, thick: {1000 * SMOOTH:g} ms running mean)")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(args.out_dir, "spheric_p1_impact.png"), dpi=110)
-    plt.close(fig)
+    one_panel(fig, ax, "p (kPa)",
+              f"SPHERIC Test 2: the impact on P1 (thin: samples, thick: {1000 * SMOOTH:g} ms running mean)",
+              "spheric_p1_impact.png")
 
     # The lee gauge (x = 0.496 m), close up, with the levels at which its arrival is read.
     fig, ax = plt.subplots(figsize=(8, 4.5))
@@ -317,14 +323,9 @@ def main():
             ax.plot(r["t"][m], r["sim"]["H.x0496"][m], color=colors[k % len(colors)], lw=1, label=r["label"])
     for level in (args.threshold, 0.1, 0.15):
         ax.axhline(level, color="0.5", lw=0.6, ls=":")
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel("height (m)")
-    ax.set_title(f"SPHERIC Test 2: the gauge behind the box (x = 0.496 m); dotted: {args.threshold:g}, 0.1, 0.15 m")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(args.out_dir, "spheric_lee.png"), dpi=110)
-    plt.close(fig)
+    one_panel(fig, ax, "height (m)",
+              f"SPHERIC Test 2: the gauge behind the box (x = 0.496 m); dotted: {args.threshold:g}, 0.1, 0.15 m",
+              "spheric_lee.png")
 
 
 if __name__ == "__main__":
