@@ -43,8 +43,8 @@ import re
 import signal
 import subprocess
 import sys
-import time
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TIMEOUT = 240
