@@ -42,7 +42,8 @@ class PeriodicRestart : public Fix {
     }
   }
 
-  // Ctrl-C: one more file, outside the schedule, so the periodic ones stay where they were.
+  // Ctrl-C or SIGUSR1: one more file, outside the schedule, so the periodic ones stay where
+  // they were.
   std::optional<std::string> write_restart_now(Simulation& sim) override {
     if (written_.empty() || written_.back().first != sim.step()) write(sim);
     return written_.back().second;
@@ -96,7 +97,7 @@ void register_restart(StyleRegistry& r) {
                   "file name pattern; '*' becomes the step number (directories are created)"},
                  ParamSpec{"keep", ParamType::Integer, std::int64_t{2}, "", "how many of the newest restarts to keep"}
                      .within(1, 1000000)});
-  r.add({"restart", StyleKind::fix, "writes restart files periodically (and on Ctrl-C), keeping the newest",
+  r.add({"restart", StyleKind::fix, "writes restart files periodically (and on Ctrl-C or SIGUSR1), keeping the newest",
          std::move(params), [](const std::string& id, const Params& p) { return std::make_unique<PeriodicRestart>(id, p); },
          nullptr});
 }
