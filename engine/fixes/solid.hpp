@@ -1,0 +1,107 @@
+#pragma once
+// The `solid` fix, internal to the engine: solid.cpp holds what it does in a step (the
+// equations, at its top), solid_setup.cpp what it does before one (its parameters, its map,
+// the scene's particles it leaves out, its restart state and its motion's pose).
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/simulation.hpp"
+#include "engine/fixes/solid_shape.hpp"
+#include "engine/geometry/motion.hpp"
+#include "engine/geometry/solid_map.hpp"
+#include "engine/geometry/wall_contact.hpp"
+#include "engine/sph/density_boundary.hpp"
+#include "engine/sph/wall_density.hpp"
+
+namespace pbf {
+
+class SolidFix : public Fix, public DensityBoundary, public SolidBody {
+ public:
+  SolidFix(const std::string& id, const Params& p);
+
+  std::vector<Stage> stages() const override {
+    return {Stage::external_forces, Stage::constraints, Stage::velocity_update, Stage::end_of_step};
+  }
+  Role role() const override { return Role::boundary; }
+  // Each particle meets the wall on its own; the load is summed over every rank's.
+  bool runs_distributed() const override { return true; }
+  DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
+  const SolidBody* solid_body() const override { return this; }
+  const std::string& name() const override { return id(); }
+  const TriangleMesh& surface() const override { return surface_; }
+  std::uint64_t surface_version() const override { return surface_version_; }
+  bool fluid_inside() const override { return fluid_inside_; }
+  std::array<double, 6> load() const override { return load_; }
+  void record_push(std::size_t i, const real momentum[3]) override {
+    for (int c = 0; c < 3; ++c) push_[c][i] += momentum[c];
+  }
+
+  // Before a run (solid_setup.cpp).
+  double max_speed(double t, double dt) const override;
+  void save_state(ByteWriter& w) const override;
+  void restore_state(ByteReader& r) override;
+  void prepare_scene(Simulation& sim) override;
+  void init(Simulation& sim) override;
+  void prepare(const Simulation& sim) override;
+
+  // In a step (solid.cpp).
+  void add_density(const Simulation& sim, real x, real y, real z, std::size_t particle, real& rho,
+                   real grad[3]) const override;
+  bool wall_velocity(const Simulation& sim, const real q[3], real v[3]) const override;
+  void external_forces(Simulation& sim) override;
+  void constraint(Simulation& sim, int) override;
+  void velocity_update(Simulation& sim) override;
+  void end_of_step(Simulation& sim) override;
+
+ private:
+  // Particles are kept a hair in front of the surface, above the map's rounding (a mesh's
+  // distances are single precision), so that a wall on a face of the domain never leaves one
+  // outside it; within twice the hair a particle touches the wall.
+  double hair() const { return 1e-3 * cell_size(); }
+  // Where projection puts a particle: `contact_distance` spacings in front of the surface,
+  // and a hair more.
+  double gap() const { return contact_spacings_ * spacing_ + hair(); }
+  double contact_tolerance() const { return gap() + hair(); }
+  double cell_size() const { return std::min(built_for_[0] / 4, spacing_ / 2); }
+  // Where projection puts particles, for keep_out (engine/geometry/wall_contact.hpp).
+  ContactDistances contact_distances() const { return {real(hair()), real(gap()), real(0.25 * cell_size())}; }
+
+  RigidTransform pose_at(double t) const { return motion_ ? transform_of(motion_->at(t), pivot_) : RigidTransform{}; }
+  void move_to(double t, bool within_step = false);
+  void check_thickness(double spacing) const;
+
+  // A world point in the frame the map was built in (the same point for a solid at rest), and
+  // back; the map's answers at a world point with the solid at pose T (solid.cpp).
+  void to_frame(const RigidTransform& T, const real q[3], real b[3]) const;
+  void to_world(const RigidTransform& T, const real b[3], real q[3]) const;
+  SolidMap::Where distance_at(const RigidTransform& T, const real q[3], real& d, real g[3]) const;
+  SolidMap::Where fraction_at(const RigidTransform& T, const real q[3], real& f, real g[3]) const;
+
+  SolidShape shape_;
+  std::string description_;
+  bool fluid_inside_;
+  double friction_;
+  bool no_slip_, wall_density_;
+  MotionPtr motion_;  // nullptr: at rest
+  Point pivot_{};
+  Pose pose_;                           // where the motion has it now
+  std::optional<Pose> saved_pose_;      // the restart's, until init compares
+  RigidTransform before_, now_;         // its pose at the step's start and end (now)
+  TriangleMesh surface_;                // the surface where it is now
+  std::uint64_t surface_version_ = 0;
+
+  HalfSpaceWall wall_;
+  SolidMap map_;
+  bool built_ = false;
+  double built_for_[7] = {0, 0, 0, 0, 0, 0, 0};
+  double spacing_ = 0, contact_spacings_ = 0;
+  std::vector<real> start_[3], start_distance_;
+  std::int64_t started_step_ = -1;  // the step start_ and start_distance_ belong to
+  std::vector<real> push_[3];  // momentum the wall gave each particle in this step
+  std::array<double, 6> load_{};
+};
+
+}  // namespace pbf
