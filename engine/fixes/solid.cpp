@@ -208,20 +208,13 @@ void SolidFix::to_world(const RigidTransform& T, const real b[3], real q[3]) con
   for (int a = 0; a < 3; ++a) q[a] = real(p[a]);
 }
 
-// The map's answer at world point q with the solid at pose T: a gradient is turned back
-// into the world.
-SolidMap::Where SolidFix::distance_at(const RigidTransform& T, const real q[3], real& d, real g[3]) const {
+// The map's answer (its distance or its fraction) at world point q with the solid at pose T:
+// a gradient is turned back into the world.
+SolidMap::Where SolidFix::map_at(MapQuery query, const RigidTransform& T, const real q[3], real& value,
+                                 real g[3]) const {
   real b[3];
   to_frame(T, q, b);
-  const auto where = map_.distance(b[0], b[1], b[2], d, g);
-  if (motion_) rotate_to_world(T, g);
-  return where;
-}
-
-SolidMap::Where SolidFix::fraction_at(const RigidTransform& T, const real q[3], real& f, real g[3]) const {
-  real b[3];
-  to_frame(T, q, b);
-  const auto where = map_.fraction(b[0], b[1], b[2], f, g);
+  const auto where = (map_.*query)(b[0], b[1], b[2], value, g);
   if (motion_) rotate_to_world(T, g);
   return where;
 }

@@ -77,8 +77,14 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   // back; the map's answers at a world point with the solid at pose T (solid.cpp).
   void to_frame(const RigidTransform& T, const real q[3], real b[3]) const;
   void to_world(const RigidTransform& T, const real b[3], real q[3]) const;
-  SolidMap::Where distance_at(const RigidTransform& T, const real q[3], real& d, real g[3]) const;
-  SolidMap::Where fraction_at(const RigidTransform& T, const real q[3], real& f, real g[3]) const;
+  using MapQuery = SolidMap::Where (SolidMap::*)(real, real, real, real&, real[3]) const;
+  SolidMap::Where map_at(MapQuery query, const RigidTransform& T, const real q[3], real& value, real g[3]) const;
+  SolidMap::Where distance_at(const RigidTransform& T, const real q[3], real& d, real g[3]) const {
+    return map_at(&SolidMap::distance, T, q, d, g);
+  }
+  SolidMap::Where fraction_at(const RigidTransform& T, const real q[3], real& f, real g[3]) const {
+    return map_at(&SolidMap::fraction, T, q, f, g);
+  }
 
   SolidShape shape_;
   std::string description_;
