@@ -129,6 +129,21 @@ TEST(MeshFile, IgnoresMaterials) {
   expect_unit_cube(read_text("mtllib x\nmap_Kd t.png\n" + cube_obj()));
 }
 
+// Assimp 5.2.5's OpenGEX reader reads past the end of a malformed file (found by fuzz_mesh,
+// fuzz/corpus/mesh/regression_assimp_opengex_overread): it is never asked, even for a
+// well-formed tetrahedron that it reads, nor when a file of another extension is offered to
+// every reader.
+TEST(MeshFile, NeverAsksTheOpenGexReader) {
+  const std::string tetrahedron =
+      "GeometryNode $node1 { ObjectRef {ref {$geometry1}} }\n"
+      "GeometryObject $geometry1 { Mesh (primitive = \"triangles\") {\n"
+      "  VertexArray (attrib = \"position\") { float[3] {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}} }\n"
+      "  IndexArray { unsigned_int32[3] {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}} } } }\n";
+  EXPECT_ERROR_NAMING(read_text(tetrahedron, "ogex"), "bad.ogex", "OpenGEX files are not read");
+  EXPECT_ERROR_NAMING(read_text(tetrahedron, "txt"), "bad.txt", "not a mesh file that can be read");
+  EXPECT_ERROR_NAMING(read_text(tetrahedron, ""), "bad.", "not a mesh file that can be read");
+}
+
 TEST(MeshFile, AppliesNodeTransformsAndUndoesMirroring) {
   const std::string gltf =
       R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,2]}],)"

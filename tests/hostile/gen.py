@@ -1669,6 +1669,15 @@ def stl_ascii(vertices=CUBE_V, faces=CUBE_F):
 # The Assimp crash of fuzz/corpus/mesh/regression_assimp_mtl_crash.obj, byte for byte: the
 # fuzz target's first byte ('o') picks the extension hint, the rest is the file.
 ASSIMP_MTL_CRASH = b"omtllib v \nmap_Kn"
+# fuzz/corpus/mesh/regression_assimp_opengex_overread, byte for byte: its first byte ('i')
+# picks no hint; the rest made Assimp 5.2.5's OpenGEX reader run strlen past the file's end.
+ASSIMP_OPENGEX_OVERREAD = b"ib\x00$indexarrayt\x17\x00  "
+# A well-formed OpenGEX tetrahedron, which Assimp reads: refused, as OpenGEX is never read.
+OPENGEX_TETRAHEDRON = (
+    "GeometryNode $node1 { ObjectRef {ref {$geometry1}} }\n"
+    "GeometryObject $geometry1 { Mesh (primitive = \"triangles\") {\n"
+    "  VertexArray (attrib = \"position\") { float[3] {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}} }\n"
+    "  IndexArray { unsigned_int32[3] {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}} } } }\n")
 
 
 def gen_mesh(g):
@@ -1797,7 +1806,8 @@ def gen_mesh(g):
         case(f"stl_coord_{label}", fname, both, "refused")
 
     g.section("Faces that are no triangles: an index beyond the vertices (positive, negative, 0, past 2^32), a "
-              "corner repeated, three corners on a line (zero area); the Assimp regressions of the fuzz corpus.")
+              "corner repeated, three corners on a line (zero area); the Assimp regressions of the fuzz corpus, and an "
+              "OpenGEX tetrahedron (never read: Assimp's OpenGEX reader over-reads), as .ogex and as .txt.")
     for label, face in [("positive", (2, 8, 99)), ("negative", (-1, -2, -99)), ("zero", (0, 8, 6)),
                         ("wrap", (2, 8, 2 ** 32 + 6))]:
         fname = f"index_{label}.obj"
@@ -1814,6 +1824,11 @@ def gen_mesh(g):
     case("assimp_mtl_crash_file", "assimp_mtl_crash_file.obj", both, "refused")
     g.file("assimp_leak.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99\n")
     case("assimp_leak", "assimp_leak.obj", both, "refused")
+    g.file("assimp_opengex_overread.dat", ASSIMP_OPENGEX_OVERREAD[1:])
+    case("assimp_opengex_overread", "assimp_opengex_overread.dat", both, "refused")
+    for fname in ("tetrahedron.ogex", "tetrahedron.txt"):
+        g.file(fname, OPENGEX_TETRAHEDRON)
+        case(fname.replace(".", "_"), fname, both, "refused")
 
     g.section("Surfaces that are not closed: a cube without a face (open), with a face flipped, two cubes "
               "sharing an edge (four triangles on it). Refused as container, as obstacle and by pbf.lattice.")
