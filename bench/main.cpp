@@ -10,6 +10,7 @@
 
 #include "bench/fma_peak.hpp"
 #include "engine/core/real.hpp"
+#include "engine/core/threads.hpp"
 
 namespace pbf::bench {
 double g_peak_flops = 0;
@@ -17,6 +18,7 @@ double g_peak_flops = 0;
 
 int main(int argc, char** argv) {
   using namespace pbf::bench;
+  pbf::restart_with_polite_waiting(argv);  // threads wait as pbfengine's do (engine/core/threads.hpp)
   spdlog::set_level(spdlog::level::warn);  // sim.run() logs a timing table at info level
   register_fma_peak_benchmarks();
   benchmark::Initialize(&argc, argv);

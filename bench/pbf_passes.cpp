@@ -11,6 +11,7 @@
 
 #include "bench/fixture.hpp"
 #include "bench/flops.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/sph/pair_sums.hpp"
 
 namespace pbf::bench {
@@ -34,7 +35,10 @@ BENCHMARK_DEFINE_F(dambreak, pbf_constraint_sums)(benchmark::State& state) {
   const PairInput in = pairs_of(sim());
   LoopClock clock;
   for (auto _ : state) {
-    constraint_sums(in, inv_rho0, sums[0].data(), sums[1].data(), sums[2].data(), sums[3].data(), sums[4].data());
+    for_blocks(n, [&](std::size_t begin, std::size_t end) {
+      constraint_sums(in, begin, end, inv_rho0, sums[0].data(), sums[1].data(), sums[2].data(), sums[3].data(),
+                      sums[4].data());
+    });
     benchmark::ClobberMemory();
   }
   report(state, clock, n, mean_neighbors(), kPbfLambdaPerPair, 0);
@@ -54,7 +58,10 @@ BENCHMARK_DEFINE_F(dambreak, pbf_constraint_corrections)(benchmark::State& state
   const PairInput in = pairs_of(sim());
   LoopClock clock;
   for (auto _ : state) {
-    constraint_corrections(in, P.data(*lambda), inv_rho0, 0, 1, 4, d[0].data(), d[1].data(), d[2].data());
+    for_blocks(n, [&](std::size_t begin, std::size_t end) {
+      constraint_corrections(in, begin, end, P.data(*lambda), inv_rho0, 0, 1, 4, d[0].data(), d[1].data(),
+                             d[2].data());
+    });
     benchmark::ClobberMemory();
   }
   report(state, clock, n, mean_neighbors(), kPbfCorrectionPerPair, 0);

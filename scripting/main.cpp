@@ -27,6 +27,7 @@
 #include "engine/core/interrupt.hpp"
 #include "engine/core/names.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/core/threads.hpp"
 #include "engine/registry/style_registry.hpp"
 #include "scripting/log_file.hpp"
 #include "scripting/script.hpp"
@@ -84,20 +85,15 @@ void report(const std::string& message) {
   pbf::log_file::write(message + "\n");
 }
 
-// The most OpenMP threads a run may use: 4 per hardware thread, enough to test a run
-// oversubscribed. More only slows a run (its threads take turns on the cores), and a very
-// large count crashes the OpenMP runtime, which cannot start that many threads.
-int thread_limit() { return 4 * omp_get_num_procs(); }
-
 std::string thread_range() {
-  return fmt::format("from 1 to {} (this machine runs {} hardware threads)", thread_limit(), omp_get_num_procs());
+  return fmt::format("from 1 to {} (4 per hardware thread of this machine)", pbf::thread_limit());
 }
 
 // --threads N: a whole number in 1 .. thread_limit(); nothing when the text is not one.
 std::optional<int> parse_threads(const std::string& text) {
   if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos) return {};
   const int n = std::stoi(text);  // at most 9 digits: fits an int
-  if (n < 1 || n > thread_limit()) return {};
+  if (n < 1 || n > pbf::thread_limit()) return {};
   return n;
 }
 
@@ -148,9 +144,11 @@ int fail(const std::string& message, int code) {
   pbf::comm::abort(code);
 }
 
-int run_script(const std::string& file, const std::vector<std::pair<std::string, std::string>>& variables) {
+int run_script(const std::string& file, const std::vector<std::pair<std::string, std::string>>& variables,
+               bool check_every_hook) {
   try {
     pbf::Simulation sim;
+    sim.set_check_every_hook(check_every_hook);
     pbf::Script script(sim);
     script.set_variables(variables);
     script.run_file(file);
@@ -176,12 +174,17 @@ int main(int argc, char** argv) {
   std::vector<std::string> assignments;
   run->add_option("FILE", file, "the scenario script (.lua)")->required();
   run->add_option("-v,--var", assignments, "set var.NAME in the script (repeatable)")->allow_extra_args(false);
-  run->add_option("--threads", threads_text, "OpenMP threads, 1 to 4 x the hardware threads (default: all cores)")
+  run->add_option("--threads", threads_text,
+                  "OpenMP threads, 1 to 4 x the hardware threads (default: one per core this process may use)")
       ->type_name("N");
   run->add_option("--log", log_path, "copy what the run prints into this file, or 'none' (default: log.pbfengine)")
       ->type_name("FILE");
   run->add_option("--log-level", level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+  bool check_every_hook = false;
+  run->add_flag("--check-every-hook", check_every_hook,
+                "check for non-finite positions and velocities after every fix, naming the one that produced "
+                "them (a debugging aid; by default once a step)");
   std::string vectors = "auto";
   run->add_option("--vectors", vectors,
                   "widest vector instructions of the pair loops: auto (the widest this machine has), avx512, avx2, "
@@ -240,16 +243,12 @@ int main(int argc, char** argv) {
     if (eq == std::string::npos || eq == 0) return command_line_error(fmt::format("-v expects NAME=VALUE, got '{}'", a));
     variables.emplace_back(a.substr(0, eq), a.substr(eq + 1));
   }
-  int threads = omp_get_max_threads();  // OpenMP's default: OMP_NUM_THREADS, else every core
+  std::optional<int> requested_threads;
   if (run->count("--threads")) {
-    const auto n = parse_threads(threads_text);
-    if (!n)
+    requested_threads = parse_threads(threads_text);
+    if (!requested_threads)
       return command_line_error(
           fmt::format("--threads must be a whole number {}, got '{}'", thread_range(), threads_text));
-    threads = *n;
-  } else if (threads > thread_limit()) {
-    return command_line_error(fmt::format("OMP_NUM_THREADS asks for {} threads; it must be {}, or give --threads",
-                                          threads, thread_range()));
   }
   if (log_path.empty()) return command_line_error("--log needs a file name, or 'none' for no log");
   try {
@@ -266,8 +265,13 @@ int main(int argc, char** argv) {
   if (log_path != "none" && resolved(log_path) == resolved(file))
     return command_line_error(fmt::format("the log file '{}' is the script itself; choose another with --log", log_path));
 
+  // Threads that wait without taking the cores they share: set before the OpenMP runtime
+  // loads, by starting again (engine/core/threads.hpp); before MPI starts and the log opens.
+  pbf::restart_with_polite_waiting(argv);
   // Under an MPI launcher: the ranks of a distributed run. Rank 0 alone prints and keeps the log.
   pbf::comm::start(argc, argv);
+  const pbf::ThreadChoice threads = pbf::choose_threads(pbf::cores_of_this_process(pbf::comm::ranks_on_node()),
+                                                        requested_threads, std::getenv("OMP_NUM_THREADS"));
   if (!pbf::comm::root()) {
     level = "off";
     log_path = "none";
@@ -282,18 +286,20 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "warning: cannot open the log file '%s' (%s); the run goes on without a log\n",
                    log_path.c_str(), why.c_str());
     else
-      pbf::log_file::write(fmt::format("command: {}\nstarted: {}\nversion: pbfengine {}\nthreads: {}\nvectors: {}\n",
-                                       command_line(argc, argv), iso8601_now(), PBF_VERSION, threads,
-                                       pbf::vectors_in_use()));
+      pbf::log_file::write(fmt::format(
+          "command: {}\nstarted: {}\nversion: pbfengine {}\nthreads: {} ({})\nwaiting: {}\nvectors: {}\n",
+          command_line(argc, argv), iso8601_now(), PBF_VERSION, threads.threads, threads.why, pbf::waiting_policy(),
+          pbf::vectors_in_use()));
   }
-  omp_set_num_threads(threads);
+  omp_set_num_threads(threads.threads);
+  const char* s = threads.threads == 1 ? "" : "s";
   if (pbf::comm::distributed())
-    spdlog::info("pbfengine {} on {} MPI ranks of {} OpenMP thread{} each (this machine runs {} hardware threads)",
-                 PBF_VERSION, pbf::comm::ranks(), threads, threads == 1 ? "" : "s", omp_get_num_procs());
+    spdlog::info("pbfengine {} on {} MPI ranks of {} OpenMP thread{} each ({})", PBF_VERSION, pbf::comm::ranks(),
+                 threads.threads, s, threads.why);
   else
-    spdlog::info("pbfengine {} on {} OpenMP thread{} (this machine runs {} hardware threads)", PBF_VERSION, threads,
-                 threads == 1 ? "" : "s", omp_get_num_procs());
-  const int code = run_script(file, variables);
+    spdlog::info("pbfengine {} on {} OpenMP thread{} ({})", PBF_VERSION, threads.threads, s, threads.why);
+  for (const std::string& warning : threads.warnings) spdlog::warn("{}", warning);
+  const int code = run_script(file, variables, check_every_hook);
   pbf::comm::stop();
   if (!pbf::log_file::close())
     std::fprintf(stderr, "warning: writing the log file '%s' failed; it is incomplete\n", log_path.c_str());

@@ -104,10 +104,11 @@ def mask(line):
 
 
 VOLATILE = [
-    (re.compile(r"^pbfengine (\S+) on \d+ OpenMP threads? \(this machine runs \d+ hardware threads\)$"),
-     r"pbfengine \1 on # OpenMP threads (this machine runs # hardware threads)"),
-    (re.compile(r"from 1 to \d+ \(this machine runs \d+ hardware threads\)"),
-     "from 1 to # (this machine runs # hardware threads)"),
+    # The thread count and why it is what it is (the cores this process may use) depend on the machine.
+    (re.compile(r"^pbfengine (\S+) on \d+ OpenMP threads? \(.*\)$"), r"pbfengine \1 on # OpenMP threads (#)"),
+    (re.compile(r"^threads: \d+ \(.*\)$"), "threads: # (#)"),
+    (re.compile(r"from 1 to \d+ \(4 per hardware thread of this machine\)"),
+     "from 1 to # (4 per hardware thread of this machine)"),
     (re.compile(r"^started: .*$"), "started: #"),
     (re.compile(r"this machine has [\d.]+ GB"), "this machine has # GB"),
     (re.compile(r"^(Timing: \d+ steps of \d+ particles in )\S+( s)$"), r"\1#\2"),

@@ -14,6 +14,7 @@
 #include "engine/core/simulation.hpp"
 #include "engine/registry/style_registry.hpp"
 #include "engine/sph/lattice.hpp"
+#include "step_window.hpp"
 
 namespace {
 std::atomic<bool> counting{false};
@@ -32,21 +33,6 @@ namespace {
 
 using namespace pbf;
 
-// Counts allocations from the end of step `from` to the end of step `to`.
-class AllocationWatch : public Fix {
- public:
-  AllocationWatch(std::int64_t from, std::int64_t to) : Fix("watch", "allocation watch"), from_(from), to_(to) {}
-  std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
-  Role role() const override { return Role::output; }
-  void end_of_step(Simulation& sim) override {
-    if (sim.step() == from_) counting = true;
-    if (sim.step() == to_) counting = false;
-  }
-
- private:
-  std::int64_t from_, to_;
-};
-
 const StyleRegistry& styles() { return StyleRegistry::builtin(); }
 
 TEST(Allocations, NoneAfterTheFirstTenStepsOfTheDamBreak) {
@@ -59,20 +45,14 @@ TEST(Allocations, NoneAfterTheFirstTenStepsOfTheDamBreak) {
 
   omp_set_num_threads(2);
   Simulation sim;
-  Domain d;
-  d.hi[0] = d.hi[1] = d.hi[2] = 0.4;
-  sim.set_domain(d);
-  const double s = 0.01;
-  sim.set_kernel_radius(2 * s);
-  sim.set_timestep(0.002);
-  const double lo[3] = {s / 2, s / 2, s / 2}, hi[3] = {0.1, 0.4 - s / 2, 0.2}, v[3] = {0, 0, 0};
-  add_lattice(sim, lo, hi, s, v);
+  test::small_dam_break(sim);
   sim.add_fix(styles().make_fix("gravity", "gravity", {{"acceleration", std::array<double, 3>{0, 0, -9.81}}}));
   sim.add_fix(styles().make_fix("pbf", "pbf", {}));
   sim.add_fix(styles().make_fix("vorticity", "vorticity", {}));
   sim.add_fix(styles().make_fix("xsph", "xsph", {}));
   sim.add_fix(styles().make_fix("walls", "box", {}));
-  sim.add_fix(std::make_unique<AllocationWatch>(10, 40));  // across a reordering (every 20 steps)
+  // Steps 11 to 40: across a reordering (every 20 steps).
+  sim.add_fix(std::make_unique<test::StepWindow>(counting, 10, 40));
   allocations = 0;
   sim.run(40);
   omp_set_num_threads(1);

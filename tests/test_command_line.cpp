@@ -5,7 +5,9 @@
 
 #include <fmt/format.h>
 #include <omp.h>
+#include <unistd.h>
 
+#include "engine/core/threads.hpp"
 #include "engine/core/vectors.hpp"
 #include "engine/core/names.hpp"
 #include "test_util.hpp"
@@ -41,8 +43,8 @@ Run run_in(const std::filesystem::path& dir, const std::string& args, const std:
 
 std::size_t lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 
-const std::string kRange = fmt::format("from 1 to {} (this machine runs {} hardware threads)", 4 * omp_get_num_procs(),
-                                       omp_get_num_procs());
+const int kMachine = static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN));
+const std::string kRange = fmt::format("from 1 to {} (4 per hardware thread of this machine)", 4 * kMachine);
 
 }  // namespace
 
@@ -77,14 +79,18 @@ TEST(CommandLine, BadThreadCountsAreOneLineNamingTheRange) {
   }
 }
 
-TEST(CommandLine, TooManyThreadsFromTheEnvironmentAreRefused) {
+TEST(CommandLine, ThreadCountsFromTheEnvironmentThatAreNoCountAreWarnedAndTheDefaultUsed) {
   const TempDir dir("cli-omp");
   write_file(dir / "a.lua", "print('ran')\n");
-  auto r = run_in(dir, "run a.lua", "OMP_NUM_THREADS=100000");
-  EXPECT_EQ(r.code, 2) << r.out << r.err;
-  EXPECT_EQ(r.err, "pbfengine: OMP_NUM_THREADS asks for 100000 threads; it must be " + kRange + ", or give --threads\n");
-  EXPECT_EQ(r.out, "");
-  EXPECT_FALSE(std::filesystem::exists(dir / "log.pbfengine"));  // nothing ran
+  for (const std::string given : {"100000", "0", "many"}) {
+    auto r = run_in(dir, "run a.lua --log none", "OMP_NUM_THREADS=" + given);
+    EXPECT_EQ(r.code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("warning: OMP_NUM_THREADS='" + given + "' is not a thread count from 1 to " +
+                         std::to_string(4 * kMachine) + ": ignored; the run uses "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("\nran\n"), std::string::npos) << r.out;
+  }
 }
 
 TEST(CommandLine, TheFirstLineOfARunGivesVersionAndThreads) {
@@ -92,11 +98,22 @@ TEST(CommandLine, TheFirstLineOfARunGivesVersionAndThreads) {
   write_file(dir / "a.lua", "print('ran')\n");
   auto r = run_engine("run " + (dir / "a.lua").string() + " --threads 1");
   EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output, fmt::format("pbfengine {} on 1 OpenMP thread (this machine runs {} hardware threads)\nran\n",
-                                  PBF_VERSION, omp_get_num_procs()));
-  r = run_engine("run " + (dir / "a.lua").string() + " --threads " + std::to_string(4 * omp_get_num_procs()));
+  EXPECT_EQ(r.output, fmt::format("pbfengine {} on 1 OpenMP thread (as --threads asks)\nran\n", PBF_VERSION));
+  // The default: one per core the process may use (here all it has: ctest gives no limits).
+  const auto usable = pbf::cores_of_this_process(1).usable();
+  r = run_engine("run " + (dir / "a.lua").string());
+  EXPECT_EQ(r.output.rfind(fmt::format("pbfengine {} on {} OpenMP thread{} (one per core this process may use: ",
+                                       PBF_VERSION, usable, usable == 1 ? "" : "s"),
+                           0),
+            0u)
+      << r.output;
+  // More than that runs, with one warning.
+  r = run_engine("run " + (dir / "a.lua").string() + " --threads " + std::to_string(4 * kMachine));
   EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_EQ(r.output.rfind(fmt::format("pbfengine {} on {} OpenMP threads", PBF_VERSION, 4 * omp_get_num_procs()), 0),
+  EXPECT_EQ(r.output.rfind(fmt::format("pbfengine {} on {} OpenMP threads (as --threads asks)\nwarning: {} threads on "
+                                       "the {} core{} this process may use",
+                                       PBF_VERSION, 4 * kMachine, 4 * kMachine, usable, usable == 1 ? "" : "s"),
+                           0),
             0u)
       << r.output;
 }
@@ -144,15 +161,17 @@ TEST(LogFile, HoldsAHeaderThenWhatTheRunPrinted) {
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_EQ(r.err, "");
   const std::string log = read_file(dir / "log.pbfengine");
-  // The header: the command line, the start time, the version, the threads and the vectors.
+  // The header: the command line, the start time, the version, the threads and why, how
+  // they wait, and the vectors.
   const std::string command = fmt::format("command: {} run a.lua -v unused=1 --threads 1\nstarted: ", PBF_BINARY);
   ASSERT_EQ(log.rfind(command, 0), 0u) << log;
   const std::string time = log.substr(command.size(), log.find('\n', command.size()) - command.size());
   EXPECT_EQ(time.size(), 25u) << time;  // 2026-11-21T14:05:09+01:00
   EXPECT_EQ(time[10], 'T');
   EXPECT_EQ(time[22], ':');
-  const std::string header = command + time + "\nversion: pbfengine " + PBF_VERSION + "\nthreads: 1\nvectors: " +
-                             pbf::vectors_in_use() + "\n";
+  const std::string header = command + time + "\nversion: pbfengine " + PBF_VERSION +
+                             "\nthreads: 1 (as --threads asks)\nwaiting: " + pbf::waiting_policy() +
+                             "\nvectors: " + pbf::vectors_in_use() + "\n";
   ASSERT_EQ(log.rfind(header, 0), 0u) << log;
   // Then exactly what the run printed: Lua's print, thermo, the timing table, warnings.
   EXPECT_EQ(log.substr(header.size()), r.out);

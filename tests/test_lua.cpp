@@ -177,7 +177,17 @@ TEST(Lua, RunsContinueAcrossCallsWithoutRepeatingFrames) {
 TEST(Lua, ABlowUpNamesStepParticleAndFix) {
   // g dt = -1e309 overflows to -inf in the first kick.
   Script s(kScene + "pbf.fix('g', 'gravity', {acceleration = {0, 0, -1e4}})\npbf.timestep(1e305)\npbf.run(3)\n");
+  // By default the step's one check finds it, and says how to name the fix.
   auto r = run_engine("run " + s.path.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.output.find(s.path.string() + ":8: step 1: the simulation blew up: particle 0 has a non-finite"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("at the end of the step (run it again with --check-every-hook to name the fix"),
+            std::string::npos)
+      << r.output;
+  // Checked after every hook, it names the fix and the stage.
+  r = run_engine("run --check-every-hook " + s.path.string());
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.output.find(s.path.string() + ":8: step 1: the simulation blew up: particle 0 has a non-finite"),
             std::string::npos)

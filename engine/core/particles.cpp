@@ -261,26 +261,31 @@ void Particles::reset_share(std::vector<std::int64_t> ids, std::size_t global) {
     if (field.live) fill(field);
 }
 
-void Particles::permute(std::span<const std::uint32_t> order, real* scratch) {
+void Particles::swap_values(FieldId field, int component, std::vector<real>& values) {
+  auto& mine = fields_[field].data[static_cast<std::size_t>(component)];
+  if (values.size() != mine.size())
+    throw Error(fmt::format("Particles::swap_values: field '{}' has {} values, the array to swap {}",
+                            fields_[field].spec.name, mine.size(), values.size()));
+  mine.swap(values);
+}
+
+void Particles::permute(std::span<const std::uint32_t> order, std::vector<real>* buffer) {
   if (ghosts_) throw Error("Particles::permute with ghosts present");
   const std::size_t n = order.size();
   std::vector<real> own;
-  if (!scratch) {
-    own.resize(n);
-    scratch = own.data();
-  }
+  std::vector<real>& next = buffer ? *buffer : own;
+  next.resize(n);
+  // Each array gathered into `next`, which then takes its place: one pass per array.
   for (auto& field : fields_) {
     for (auto& component : field.data) {
-      real* values = component.data();
-#pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) scratch[i] = values[order[i]];
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) values[i] = scratch[i];
+      const real* values = component.data();
+      real* into = next.data();
+      for_particles(n, [&](std::size_t i) { into[i] = values[order[i]]; });
+      component.swap(next);
     }
   }
   id_scratch_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) id_scratch_[i] = ids_[order[i]];
+  for_particles(n, [&](std::size_t i) { id_scratch_[i] = ids_[order[i]]; });
   ids_.swap(id_scratch_);
 }
 

@@ -106,6 +106,12 @@ class Particles {
   real* data(FieldId field, int component = 0) { return fields_[field].data[component].data(); }
   const real* data(FieldId field, int component = 0) const { return fields_[field].data[component].data(); }
 
+  // Exchanges a field component's values (ghosts included) with `values`, of the same
+  // length: a pass that computes a whole new array from the old one (new positions from the
+  // neighbours' old ones) writes it elsewhere and swaps, instead of copying it back. Pointers
+  // taken to either before are to the other afterwards.
+  void swap_values(FieldId field, int component, std::vector<real>& values);
+
   real* x() { return data(kPosition, 0); }
   real* y() { return data(kPosition, 1); }
   real* z() { return data(kPosition, 2); }
@@ -136,8 +142,9 @@ class Particles {
   std::size_t remove(const std::vector<char>& drop);
 
   // Reorders every field: particle i of the result is particle order[i] of before.
-  // `scratch`: room for one value per particle (else permute takes its own).
-  void permute(std::span<const std::uint32_t> order, real* scratch = nullptr);
+  // `buffer`: an array to gather into, which trades places with each field's array in turn
+  // (else permute takes its own); it holds one of them, reordered, afterwards.
+  void permute(std::span<const std::uint32_t> order, std::vector<real>* buffer = nullptr);
   // index_of_id()[k]: the current index of the particle with id k.
   std::vector<std::uint32_t> index_of_id() const;
 

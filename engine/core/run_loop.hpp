@@ -37,7 +37,9 @@ class RunLoop {
   void run_stage(Stage stage, int iteration = 0);
   void call(Stage stage, Fix& fix, int iteration);
   void check_finite(Stage stage, const Fix& fix) const;
+  void check_end_of_step(std::int64_t step) const;
   std::size_t first_non_finite() const;
+  std::string blew_up(std::size_t i) const;
   void check_clumping() const;
   [[noreturn]] void stop_interrupted();
   std::string write_restart_now(const char* prefix);

@@ -105,30 +105,48 @@ void RunLoop::check_clumping() const {
       sim_.step_ + 1, sim_.particles_.ids()[first], grid.count(first), full_neighborhood_));
 }
 
+// Whether particle i's position or velocity is NaN or infinite (x * 0 is NaN exactly then).
+namespace {
+bool non_finite(const Particles& P, std::size_t i) {
+  const real s = P.x()[i] * 0 + P.y()[i] * 0 + P.z()[i] * 0 + P.vx()[i] * 0 + P.vy()[i] * 0 + P.vz()[i] * 0;
+  return s != s;
+}
+}  // namespace
+
 // The first particle (in memory order) whose position or velocity is NaN or infinite; n if none.
 std::size_t RunLoop::first_non_finite() const {
   const auto& P = sim_.particles_;
-  const real *x = P.x(), *y = P.y(), *z = P.z(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
-  const std::size_t n = P.size();
-  std::size_t first = n;
-  // x * 0 is NaN exactly when x is NaN or infinite; the sum vectorises.
-#pragma omp parallel for schedule(static) reduction(min : first)
-  for (std::size_t i = 0; i < n; ++i) {
-    const real s = x[i] * 0 + y[i] * 0 + z[i] * 0 + vx[i] * 0 + vy[i] * 0 + vz[i] * 0;
-    if (s != s) first = std::min(first, i);
-  }
-  return first;
+  return first_particle(P.size(), [&](std::size_t i) { return non_finite(P, i); });
+}
+
+std::string RunLoop::blew_up(std::size_t i) const {
+  const auto& P = sim_.particles_;
+  return fmt::format("the simulation blew up: particle {} has a non-finite position or velocity (position {} {} {}, "
+                     "velocity {} {} {})",
+                     P.ids()[i], P.x()[i], P.y()[i], P.z()[i], P.vx()[i], P.vy()[i], P.vz()[i]);
 }
 
 void RunLoop::check_finite(Stage stage, const Fix& fix) const {
   const std::size_t first = first_non_finite();
   if (first == sim_.particles_.size()) return;
+  throw Error(fmt::format("step {}: {} after fix '{}' ({}) in stage {}", sim_.step_ + 1, blew_up(first), fix.id(),
+                          fix.style(), stage_name(stage)));
+}
+
+// The step's one check, in one pass: every position and velocity finite (a blow-up; the
+// first one is named), then every particle inside the domain. Which fix produced a
+// non-finite value only a check after every hook can say: the message says how to ask.
+void RunLoop::check_end_of_step(std::int64_t step) const {
   const auto& P = sim_.particles_;
-  throw Error(fmt::format(
-      "step {}: the simulation blew up: particle {} has a non-finite position or velocity "
-      "(position {} {} {}, velocity {} {} {}) after fix '{}' ({}) in stage {}",
-      sim_.step_ + 1, P.ids()[first], P.x()[first], P.y()[first], P.z()[first], P.vx()[first], P.vy()[first],
-      P.vz()[first], fix.id(), fix.style(), stage_name(stage)));
+  const Domain& domain = sim_.domain_;
+  const auto [bad, outside] = first_particles<2>(P.size(), [&](std::size_t i) {
+    return std::array<bool, 2>{non_finite(P, i), !domain.contains(P.x()[i], P.y()[i], P.z()[i])};
+  });
+  if (bad < P.size())
+    throw Error(fmt::format("step {}: {} at the end of the step (run it again with --check-every-hook to name the "
+                            "fix that produced it)",
+                            step, blew_up(bad)));
+  if (outside < P.size()) throw Error(fmt::format("step {}: {}", step, sim_.outside_domain(outside)));
 }
 
 }  // namespace pbf

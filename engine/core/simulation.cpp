@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/distributed/comm.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/sph/pair_sums.hpp"
@@ -239,8 +240,8 @@ Simulation::ListTimes Simulation::bin_and_list() {
   };
   rebuild_ghosts();
   lap(times.ghosts);
-  grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_);
-  grid_.order_cells_by(P.ids());  // each list in cell order, then id: memory order plays no part
+  // Each list in cell order, then id: memory order plays no part.
+  grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_, P.ids());
   lap(times.binning);
   grid_.build_lists(P.x(), P.y(), P.z(), h_, P.size());
   lap(times.lists);
@@ -274,8 +275,7 @@ const NeighborGrid& Simulation::point_cells() {
     rebuild_ghosts();
   }
   if (point_grid_version_ != positions_version_ || point_grid_.binned_count() != P.size_with_ghosts()) {
-    point_grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_);
-    point_grid_.order_cells_by(P.ids());
+    point_grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_, P.ids());
     point_grid_version_ = positions_version_;
   }
   return point_grid_;
@@ -304,37 +304,54 @@ const real* Simulation::solver_density() {
 }
 
 const std::vector<real>& Simulation::summed_density() {
-  if (density_version_ == positions_version_ && density_.size() == particles_.size_with_ghosts()) return density_;
-  if (grid_.particle_count() != particles_.size() || !lists_valid_) refresh_neighbors();
-  const std::size_t n = particles_.size();
-  density_.resize(particles_.size_with_ghosts());
-  update_ghost_positions();
-  const real *x = particles_.x(), *y = particles_.y(), *z = particles_.z(), *m = particles_.mass();
-  const Kernels& K = kernels_;
-  for (DensityBoundary* b : boundaries_) b->prepare(*this);
-  density_sums(PairInput{grid_, x, y, z, m, uniform_mass(m, n, particles_.distributed()), K, n}, density_.data());
-  if (!boundaries_.empty()) {
-#pragma omp parallel for schedule(static, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-      real grad[3] = {0, 0, 0};
-      for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], i, density_[i], grad);
-    }
-  }
-  update_ghosts({density_.data()});
-  density_version_ = positions_version_;
+  refresh_density(false);
   return density_;
 }
 
 const std::vector<real>& Simulation::summed_volume() {
-  const std::vector<real>& rho = summed_density();
-  if (volume_version_ == density_version_ && volume_.size() == rho.size()) return volume_;
-  const std::size_t n = rho.size();  // ghosts included: their densities came with update_ghosts
-  volume_.resize(n);
-  const real* m = particles_.mass();
-#pragma omp parallel for simd schedule(static)
-  for (std::size_t i = 0; i < n; ++i) volume_[i] = m[i] / rho[i];
-  volume_version_ = density_version_;
+  refresh_density(true);
   return volume_;
+}
+
+// The density, and the volume when asked, in one pass over the particles (a pair sum, the
+// walls' share, m / rho); the ghosts' come from their owners.
+void Simulation::refresh_density(bool with_volume) {
+  const bool density_current = density_version_ == positions_version_ && density_.size() == particles_.size_with_ghosts();
+  const bool volume_current = volume_version_ == density_version_ && volume_.size() == density_.size();
+  if (density_current && (volume_current || !with_volume)) return;
+  const std::size_t n = particles_.size();
+  const real* m = particles_.mass();
+  if (density_current) {  // the volume only
+    volume_.resize(density_.size());
+    for_particles(density_.size(), [&](std::size_t i) { volume_[i] = m[i] / density_[i]; });
+    volume_version_ = density_version_;
+    return;
+  }
+  if (grid_.particle_count() != particles_.size() || !lists_valid_) refresh_neighbors();
+  density_.resize(particles_.size_with_ghosts());
+  if (with_volume) volume_.resize(density_.size());
+  update_ghost_positions();
+  const real *x = particles_.x(), *y = particles_.y(), *z = particles_.z();
+  // Within a run the boundaries' constants are those its start prepared (each boundary's
+  // init); between runs a script may have changed the particles' mass or h.
+  if (!running_)
+    for (DensityBoundary* b : boundaries_) b->prepare(*this);
+  const PairInput pairs{grid_, x, y, z, m, uniform_mass(m, n, particles_.distributed()), kernels_, n};
+  real* rho = density_.data();
+  real* volume = with_volume ? volume_.data() : nullptr;
+  for_blocks(n, [&](std::size_t begin, std::size_t end) {
+    density_sums(pairs, begin, end, rho);
+    for (std::size_t i = begin; i < end; ++i) {
+      real grad[3] = {0, 0, 0};
+      for (const DensityBoundary* b : boundaries_) b->add_density(*this, x[i], y[i], z[i], i, rho[i], grad);
+      if (volume) volume[i] = m[i] / rho[i];
+    }
+  });
+  update_ghosts({rho});
+  if (volume)
+    for (std::size_t i = n; i < density_.size(); ++i) volume[i] = m[i] / rho[i];
+  density_version_ = positions_version_;
+  if (volume) volume_version_ = density_version_;
 }
 
 real* Simulation::scratch(std::size_t k) {
@@ -343,16 +360,22 @@ real* Simulation::scratch(std::size_t k) {
   return scratch_[k].data();
 }
 
+void Simulation::swap_with_scratch(FieldId field, int component, std::size_t k) {
+  scratch(k);  // checks k and sizes the array
+  particles_.swap_values(field, component, scratch_[k]);
+}
+
 void Simulation::check_inside_domain() const {
   const auto& P = particles_;
-  std::size_t first = P.size();
-#pragma omp parallel for schedule(static) reduction(min : first)
-  for (std::size_t i = 0; i < P.size(); ++i)
-    if (!domain_.contains(P.x()[i], P.y()[i], P.z()[i])) first = std::min(first, i);
-  if (first == P.size()) return;
-  throw Error(fmt::format("particle {} at ({}, {}, {}) is outside the domain [{}, {}] x [{}, {}] x [{}, {}]",
-                          P.ids()[first], P.x()[first], P.y()[first], P.z()[first], domain_.lo[0], domain_.hi[0],
-                          domain_.lo[1], domain_.hi[1], domain_.lo[2], domain_.hi[2]));
+  const std::size_t first = first_particle(P.size(), [&](std::size_t i) { return !domain_.contains(P.x()[i], P.y()[i], P.z()[i]); });
+  if (first < P.size()) throw Error(outside_domain(first));
+}
+
+std::string Simulation::outside_domain(std::size_t i) const {
+  const auto& P = particles_;
+  return fmt::format("particle {} at ({}, {}, {}) is outside the domain [{}, {}] x [{}, {}] x [{}, {}]", P.ids()[i],
+                     P.x()[i], P.y()[i], P.z()[i], domain_.lo[0], domain_.hi[0], domain_.lo[1], domain_.hi[1],
+                     domain_.lo[2], domain_.hi[2]);
 }
 
 }  // namespace pbf

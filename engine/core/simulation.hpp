@@ -69,6 +69,11 @@ class Simulation {
   Clock clock() const { return {step_, step_base_, time_base_}; }
   void set_clock(const Clock& clock);
   int reorder_interval() const { return reorder_every_; }
+  // Whether the run loop checks for non-finite positions and velocities after every hook
+  // (naming the fix that produced one), instead of once at the end of each step: a
+  // debugging aid, one parallel pass more per hook (`pbfengine run --check-every-hook`).
+  void set_check_every_hook(bool on) { check_every_hook_ = on; }
+  bool check_every_hook() const { return check_every_hook_; }
 
   // --- restarts ---
   // States from a restart: each goes to the fix of the same id (and style) when the script
@@ -128,6 +133,9 @@ class Simulation {
   // such arrays, not a few per fix: memory per particle is the engine's limit on size.
   static constexpr std::size_t kScratchArrays = 6;
   real* scratch(std::size_t k);
+  // Scratch array k and a field's component trade places (Particles::swap_values): a pass
+  // that wrote the component's new values into the scratch array makes them the field's.
+  void swap_with_scratch(FieldId field, int component, std::size_t k);
   // The density the solver uses, for measurements between steps (computes, dumps): the
   // "density" field of a solver that keeps one (wcsph, summed or integrated), else the SPH
   // sum over freshly built lists. One value per particle, in memory order.
@@ -163,6 +171,8 @@ class Simulation {
  private:
   friend class RunLoop;
   void check_inside_domain() const;
+  // The message for particle i (in memory order) outside the domain.
+  std::string outside_domain(std::size_t i) const;
   void collect_boundaries();
   void restore_saved_state(Fix& fix);
   void warn_unmatched_states();
@@ -172,6 +182,7 @@ class Simulation {
   double h_ = 0, dt_ = 0, rest_density_ = 1000;
   Kernels kernels_{1.0};
   int reorder_every_ = 20;
+  bool check_every_hook_ = false;
   std::int64_t step_ = 0, step_base_ = 0;
   double time_base_ = 0;
 
@@ -200,6 +211,8 @@ class Simulation {
     double ghosts = 0, binning = 0, lists = 0;
   };
   ListTimes bin_and_list();
+  void refresh_density(bool with_volume);
+  bool running_ = false;  // inside Simulation::run (set by the run loop)
   std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0, ghost_positions_version_ = 0;
   std::vector<real> density_, volume_;
   std::uint64_t volume_version_ = 0;

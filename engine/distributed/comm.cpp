@@ -49,6 +49,16 @@ void stop() {
 int rank() { return my_rank; }
 int ranks() { return world_size; }
 
+int ranks_on_node() {
+  if (!started) return 1;
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int size = 1;
+  MPI_Comm_size(node, &size);
+  MPI_Comm_free(&node);
+  return size;
+}
+
 void barrier() {
   if (started) MPI_Barrier(MPI_COMM_WORLD);
 }

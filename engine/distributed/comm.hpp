@@ -26,6 +26,9 @@ void stop();
 int rank();   // this process, 0 when MPI did not start
 int ranks();  // how many there are, 1 when MPI did not start
 inline bool distributed() { return ranks() > 1; }
+// The ranks that share this rank's node (its memory and cores), itself included; 1 when MPI
+// did not start. Collective.
+int ranks_on_node();
 inline bool root() { return rank() == 0; }
 
 // Collective calls: every rank makes them, in the same order.

@@ -50,17 +50,18 @@ CellRange cells_holding(const Particles& P, const GridGeometry& grid) {
   const std::size_t n = P.size();
   if (n == 0) return CellRange{{0, 0, 0}, {1, 1, 1}};
   const real* x[3] = {P.x(), P.y(), P.z()};
+  long lo[3] = {grid.dims[0], grid.dims[1], grid.dims[2]}, hi[3] = {-1, -1, -1};
+#pragma omp parallel for schedule(static) reduction(min : lo[:3]) reduction(max : hi[:3])
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) {
+      const long c = grid.cell_along(a, x[a][i]);
+      lo[a] = std::min(lo[a], c);
+      hi[a] = std::max(hi[a], c);
+    }
   CellRange r;
   for (int a = 0; a < 3; ++a) {
-    long lo = grid.dims[a], hi = -1;
-#pragma omp parallel for schedule(static) reduction(min : lo) reduction(max : hi)
-    for (std::size_t i = 0; i < n; ++i) {
-      const long c = grid.cell_along(a, x[a][i]);
-      lo = std::min(lo, c);
-      hi = std::max(hi, c);
-    }
-    r.lo[a] = lo;
-    r.hi[a] = hi + 1;
+    r.lo[a] = lo[a];
+    r.hi[a] = hi[a] + 1;
   }
   return r;
 }

@@ -19,6 +19,7 @@
 
 #include "engine/sph/density_boundary.hpp"
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/sph/wall_density.hpp"
@@ -57,13 +58,14 @@ class Box : public Fix, public DensityBoundary {
     auto& P = sim.particles();
     const Domain& d = sim.domain();
     real* x[3] = {P.x(), P.y(), P.z()};
-    const std::size_t n = P.size();
+    real lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
-      const real lo = real(d.lo[a] + contact_), hi = real(d.hi[a] - contact_);
-      real* xa = x[a];
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) xa[i] = xa[i] < lo ? lo : (xa[i] > hi ? hi : xa[i]);
+      lo[a] = real(d.lo[a] + contact_);
+      hi[a] = real(d.hi[a] - contact_);
     }
+    for_particles(P.size(), [&](std::size_t i) {
+      for (int a = 0; a < 3; ++a) x[a][i] = x[a][i] < lo[a] ? lo[a] : (x[a][i] > hi[a] ? hi[a] : x[a][i]);
+    });
   }
 
   void velocity_update(Simulation& sim) override {
@@ -74,9 +76,7 @@ class Box : public Fix, public DensityBoundary {
     const real keep = real(std::exp(-friction_ * sim.timestep()));
     const real e = real(restitution_);
     const bool bounce = restitution_ > 0;
-    const std::size_t n = P.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    for_particles(P.size(), [&](std::size_t i) {
       for (int a = 0; a < 3; ++a) {
         // side: -1 touching the lower face, +1 the upper one; a clamped position is exact.
         const int side = x[a][i] <= real(d.lo[a] + contact_) ? -1 : (x[a][i] >= real(d.hi[a] - contact_) ? 1 : 0);
@@ -86,7 +86,7 @@ class Box : public Fix, public DensityBoundary {
         v[(a + 1) % 3][i] *= keep;
         v[(a + 2) % 3][i] *= keep;
       }
-    }
+    });
   }
 
   void init(Simulation& sim) override {

@@ -2,6 +2,7 @@
 // "acceleration" field, leapfrog) it adds g there in the forces stage, so that the
 // integrator applies it with the right weights; otherwise (PBF, Macklin & Mueller's
 // Algorithm 1) it kicks velocities directly, v += g dt, before the prediction.
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
 
@@ -27,14 +28,13 @@ class Gravity : public Fix {
   void forces(Simulation& sim) override {
     auto& P = sim.particles();
     const auto accel = P.find("acceleration");  // declared by the integrator's init
-    const real g[3] = {real(g_[0]), real(g_[1]), real(g_[2])};
-    const std::size_t n = P.size();
-    for (int c = 0; c < 3; ++c) {
-      real* a = P.data(*accel, c);
-      const real gc = g[c];
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) a[i] += gc;
-    }
+    const real gx = real(g_[0]), gy = real(g_[1]), gz = real(g_[2]);
+    real *ax = P.data(*accel, 0), *ay = P.data(*accel, 1), *az = P.data(*accel, 2);
+    for_particles(P.size(), [&](std::size_t i) {
+      ax[i] += gx;
+      ay[i] += gy;
+      az[i] += gz;
+    });
   }
 
   void external_forces(Simulation& sim) override {
@@ -42,13 +42,11 @@ class Gravity : public Fix {
     const real dt = real(sim.timestep());
     const real gx = real(g_[0]) * dt, gy = real(g_[1]) * dt, gz = real(g_[2]) * dt;
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
-    const std::size_t n = P.size();
-#pragma omp parallel for simd schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    for_particles(P.size(), [&](std::size_t i) {
       vx[i] += gx;
       vy[i] += gy;
       vz[i] += gz;
-    }
+    });
   }
 
  private:

@@ -5,6 +5,7 @@
 // The acceleration is a declared field ("acceleration", saved in restarts): it is the state
 // one step hands to the next. The first step has no a_n: it drifts with v_0 and kicks by the
 // whole dt at its end.
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
@@ -32,15 +33,14 @@ class Leapfrog : public Fix {
     const real dt = real(sim.timestep()), half = started_ ? dt / 2 : 0;
     real* x[3] = {P.x(), P.y(), P.z()};
     real* v[3] = {P.vx(), P.vy(), P.vz()};
-    for (int c = 0; c < 3; ++c) {
-      real *xc = x[c], *vc = v[c], *ac = P.data(accel_, c);
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
-        vc[i] += half * ac[i];
-        xc[i] += dt * vc[i];
-        ac[i] = 0;
+    real* a[3] = {P.data(accel_, 0), P.data(accel_, 1), P.data(accel_, 2)};
+    for_particles(n, [&](std::size_t i) {
+      for (int c = 0; c < 3; ++c) {
+        v[c][i] += half * a[c][i];
+        x[c][i] += dt * v[c][i];
+        a[c][i] = 0;
       }
-    }
+    });
   }
 
   void velocity_update(Simulation& sim) override {
@@ -48,11 +48,10 @@ class Leapfrog : public Fix {
     const std::size_t n = P.size();
     const real dt = real(sim.timestep()), kick = started_ ? dt / 2 : dt;
     real* v[3] = {P.vx(), P.vy(), P.vz()};
-    for (int c = 0; c < 3; ++c) {
-      real *vc = v[c], *ac = P.data(accel_, c);
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) vc[i] += kick * ac[i];
-    }
+    const real* a[3] = {P.data(accel_, 0), P.data(accel_, 1), P.data(accel_, 2)};
+    for_particles(n, [&](std::size_t i) {
+      for (int c = 0; c < 3; ++c) v[c][i] += kick * a[c][i];
+    });
     started_ = true;
   }
 

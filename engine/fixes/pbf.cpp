@@ -36,6 +36,7 @@
 // the dam break stays stable while its particles move up to 1.5 h a step, kStableMove).
 #include <algorithm>
 #include <cmath>
+#include <omp.h>
 #include <vector>
 
 #include <fmt/format.h>
@@ -126,20 +127,22 @@ class PositionBasedFluid : public Fix {
     const std::size_t n = P.size();
     for (auto& c : prev_) c.resize(n);
     const real dt = real(sim.timestep());
-    real* x[3] = {P.x(), P.y(), P.z()};
-    const real* v[3] = {P.vx(), P.vy(), P.vz()};
-    for (int c = 0; c < 3; ++c) {
-      real* prev = prev_[c].data();
-      real* xc = x[c];
-      const real* vc = v[c];
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
-        prev[i] = xc[i];
-        xc[i] += dt * vc[i];
-      }
-    }
+    real *x = P.x(), *y = P.y(), *z = P.z(), *px = prev_[0].data(), *py = prev_[1].data(), *pz = prev_[2].data();
+    const real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    for_particles(n, [&](std::size_t i) {
+      px[i] = x[i];
+      py[i] = y[i];
+      pz[i] = z[i];
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
+      z[i] += dt * vz[i];
+    });
   }
 
+  // One iteration in two passes, each one parallel region: the fluid's sums, the walls and
+  // the multiplier of each particle; then its correction, with the walls' share, and its
+  // corrected position, written into scratch arrays that then take the positions' place (the
+  // corrections read the neighbours' positions before any moves: a Jacobi iteration).
   void constraint(Simulation& sim, int iteration) override {
     auto& P = sim.particles();
     const auto& grid = sim.neighbors();
@@ -151,7 +154,6 @@ class PositionBasedFluid : public Fix {
     const real scorr_scale = real(k_ / S0_);
     const real inv_wdq = 1 / scorr_w_;
     const real inv_dt = real(1 / sim.timestep());
-    real *x = P.x(), *y = P.y(), *z = P.z();
     const real* m = P.mass();
     real* lambda = P.data(lambda_);
     real* pressure = keep_pressure_ ? P.data(pressure_) : nullptr;
@@ -161,100 +163,110 @@ class PositionBasedFluid : public Fix {
     const bool measure = adaptive() || iteration + 1 == iterations_;
     if (pressure) wall_share_.resize(n);
 
-    // The fluid's sums (engine/sph/pair_sums.hpp), then the walls and the multiplier. Scratch
-    // arrays are reused as their values are used up, particle by particle: the fluid's
-    // gradient becomes the compression (for the report), then the corrections; its density
-    // and squared gradients become the first wall's gradient (see wall_gradients).
+    // Scratch arrays are reused as their values are used up, particle by particle: the
+    // fluid's gradient (0 to 2) becomes the corrections, then the corrected positions; its
+    // density and squared gradients (3, 4) become the first wall's gradient (see
+    // wall_gradients).
     real *grad_x = sim.scratch(0), *grad_y = sim.scratch(1), *grad_z = sim.scratch(2), *fluid_rho = sim.scratch(3),
          *grad_sq = sim.scratch(4);
-    real* excess = grad_x;  // max(rho/rho0 - 1, 0) of each particle
     wall_gradients(sim, walls.size());
     sim.update_ghost_positions();  // moved by the last iteration's corrections and walls
+    const real *x = P.x(), *y = P.y(), *z = P.z();
     const PairInput pairs{grid, x, y, z, m, uniform_mass_, K, n};
-    constraint_sums(pairs, inv_rho0, fluid_rho, grad_x, grad_y, grad_z, grad_sq);
-#pragma omp parallel for schedule(static, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-      const real fluid = fluid_rho[i], squares = grad_sq[i];
-      real rho = fluid;
-      real gi[3] = {grad_x[i], grad_y[i], grad_z[i]};
-      // Each wall's gradient, kept for the correction pass (the positions do not change in between).
-      for (std::size_t b = 0; b < walls.size(); ++b) {
-        real wall_grad[3] = {0, 0, 0};
-        walls[b]->add_density(sim, x[i], y[i], z[i], i, rho, wall_grad);
-        for (int c = 0; c < 3; ++c) {
-          gi[c] += wall_grad[c] * inv_rho0;
-          wall_grad_[3 * b + c][i] = wall_grad[c];
+    ThreadSums<1> compression;  // of max(rho/rho0 - 1, 0), for the report
+    most_.assign(static_cast<std::size_t>(omp_get_max_threads()), 0);
+    for_blocks(n, [&](std::size_t begin, std::size_t end) {
+      constraint_sums(pairs, begin, end, inv_rho0, fluid_rho, grad_x, grad_y, grad_z, grad_sq);
+      auto& compressed = compression.mine()[0];
+      real& most = most_[static_cast<std::size_t>(omp_get_thread_num())];
+      for (std::size_t i = begin; i < end; ++i) {
+        const real fluid = fluid_rho[i], squares = grad_sq[i];
+        real rho = fluid;
+        real gi[3] = {grad_x[i], grad_y[i], grad_z[i]};
+        // Each wall's gradient, kept for the correction pass (the positions do not change in between).
+        for (std::size_t b = 0; b < walls.size(); ++b) {
+          real wall_grad[3] = {0, 0, 0};
+          walls[b]->add_density(sim, x[i], y[i], z[i], i, rho, wall_grad);
+          for (int c = 0; c < 3; ++c) {
+            gi[c] += wall_grad[c] * inv_rho0;
+            wall_grad_[3 * b + c][i] = wall_grad[c];
+          }
+        }
+        real C = rho * inv_rho0 - 1;
+        if (measure) {
+          const real excess = C > 0 ? C : 0;
+          compressed.add(double(excess));
+          most = excess > most ? excess : most;
+        }
+        if (one_sided_ && C < 0) C = 0;
+        lambda[i] = -real(omega_) * C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + squares + relax);
+        if (pressure) {
+          // Next to a wall the particle's multiplier does the wall's share too (see the top).
+          if (iteration > 0) add_contact_pressure(i, x[i], y[i], z[i], pressure[i], to_pressure);
+          const real share = std::min(real(1), (rho - fluid) * inv_first_wall);
+          pressure[i] = (iteration == 0 ? 0 : pressure[i]) + to_pressure * lambda[i] / (1 + share);
+          wall_share_[i] = share;
         }
       }
-      real C = rho * inv_rho0 - 1;
-      if (measure) excess[i] = C > 0 ? C : 0;
-      if (one_sided_ && C < 0) C = 0;
-      lambda[i] = -real(omega_) * C / (gi[0] * gi[0] + gi[1] * gi[1] + gi[2] * gi[2] + squares + relax);
-      if (pressure) {
-        // Next to a wall the particle's multiplier does the wall's share too (see the top).
-        if (iteration > 0) add_contact_pressure(i, x[i], y[i], z[i], pressure[i], to_pressure);
-        const real share = std::min(real(1), (rho - fluid) * inv_first_wall);
-        pressure[i] = (iteration == 0 ? 0 : pressure[i]) + to_pressure * lambda[i] / (1 + share);
-        wall_share_[i] = share;
-      }
-    }
+    });
+    if (measure) measure_error(sim, compression.total(P.distributed())[0]);
 
-    if (measure) measure_error(sim, excess);
-
-    // The corrections, in the arrays of the gradients (used up).
-    real *dpx = grad_x, *dpy = grad_y, *dpz = grad_z;
+    // The corrections, in the arrays of the gradients (used up), then the corrected positions.
+    real *next_x = grad_x, *next_y = grad_y, *next_z = grad_z;
     sim.update_ghosts({lambda});
-    constraint_corrections(pairs, lambda, inv_rho0, scorr_scale, inv_wdq, n_, dpx, dpy, dpz);
-    if (!walls.empty()) {
-      // A wall's gradient moves only particle i (the wall has no lambda of its own); the wall
-      // takes the opposite momentum, m dx / dt.
-#pragma omp parallel for schedule(static, 256)
-      for (std::size_t i = 0; i < n; ++i) {
-        real* d[3] = {&dpx[i], &dpy[i], &dpz[i]};
+    for_blocks(n, [&](std::size_t begin, std::size_t end) {
+      constraint_corrections(pairs, begin, end, lambda, inv_rho0, scorr_scale, inv_wdq, n_, next_x, next_y, next_z);
+      for (std::size_t i = begin; i < end; ++i) {
+        real d[3] = {next_x[i], next_y[i], next_z[i]};
+        // A wall's gradient moves only particle i (the wall has no lambda of its own); the
+        // wall takes the opposite momentum, m dx / dt.
         for (std::size_t b = 0; b < walls.size(); ++b) {
           real push[3];
           for (int c = 0; c < 3; ++c) {
             const real move = lambda[i] * inv_rho0 * wall_grad_[3 * b + c][i];
-            *d[c] += move;
+            d[c] += move;
             push[c] = m[i] * move * inv_dt;
           }
           walls[b]->record_push(i, push);
         }
+        next_x[i] = x[i] + d[0];
+        next_y[i] = y[i] + d[1];
+        next_z[i] = z[i] + d[2];
       }
-    }
-#pragma omp parallel for simd schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      x[i] += dpx[i];
-      y[i] += dpy[i];
-      z[i] += dpz[i];
-    }
+    });
+    for (int c = 0; c < 3; ++c) sim.swap_with_scratch(Particles::kPosition, c, static_cast<std::size_t>(c));
     if (pressure) {  // where the walls' projections, which come next, start from
-      corrected_[0].assign(x, x + n);
-      corrected_[1].assign(y, y + n);
-      corrected_[2].assign(z, z + n);
+      corrected_[0].assign(P.x(), P.x() + n);
+      corrected_[1].assign(P.y(), P.y() + n);
+      corrected_[2].assign(P.z(), P.z() + n);
     }
   }
 
+  // The velocities from the step's moves, and the step's longest move (one pass).
   void velocity_update(Simulation& sim) override {
     auto& P = sim.particles();
     const std::size_t n = P.size();
     const real inv_dt = real(1 / sim.timestep());
-    const real* x[3] = {P.x(), P.y(), P.z()};
+    const real *x = P.x(), *y = P.y(), *z = P.z();
     if (keep_pressure_) {  // the walls' projection after the last correction
       real* pressure = P.data(pressure_);
       const real to_pressure = real(-kappa_) * real(sim.rest_density()) * inv_dt * inv_dt;
-#pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) add_contact_pressure(i, x[0][i], x[1][i], x[2][i], pressure[i], to_pressure);
+      for_particles(n, [&](std::size_t i) { add_contact_pressure(i, x[i], y[i], z[i], pressure[i], to_pressure); });
     }
-    check_step_length(sim);
-    real* v[3] = {P.vx(), P.vy(), P.vz()};
-    for (int c = 0; c < 3; ++c) {
-      const real* prev = prev_[c].data();
-      const real* xc = x[c];
-      real* vc = v[c];
-#pragma omp parallel for simd schedule(static)
-      for (std::size_t i = 0; i < n; ++i) vc[i] = (xc[i] - prev[i]) * inv_dt;
-    }
+    real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    const real *px = prev_[0].data(), *py = prev_[1].data(), *pz = prev_[2].data();
+    std::vector<double>& farthest = farthest_;
+    farthest.assign(static_cast<std::size_t>(omp_get_max_threads()), 0);
+    for_blocks(n, [&](std::size_t begin, std::size_t end) {
+      double& most = farthest[static_cast<std::size_t>(omp_get_thread_num())];
+      for (std::size_t i = begin; i < end; ++i) {
+        vx[i] = (x[i] - px[i]) * inv_dt;
+        vy[i] = (y[i] - py[i]) * inv_dt;
+        vz[i] = (z[i] - pz[i]) * inv_dt;
+        most = std::max(most, moved2(P, i));
+      }
+    });
+    check_step_length(sim, *std::max_element(farthest.begin(), farthest.end()));
   }
 
  private:
@@ -298,17 +310,14 @@ class PositionBasedFluid : public Fix {
     return dx * dx + dy * dy + dz * dz;
   }
 
-  // Stops the run when a particle moved farther than kMostMove h in this step (see the top).
-  // The farthest particle is named, the first in memory order on a tie. A particle that left
-  // the domain is the run loop's to name, after this stage: where it went says more (a wall
-  // missing) than how far.
-  void check_step_length(const Simulation& sim) const {
+  // Stops the run when a particle moved farther than kMostMove h in this step (see the top);
+  // `most`: the largest moved2 of the step. The farthest particle is named, the first in
+  // memory order on a tie. A particle that left the domain is the run loop's to name, after
+  // this stage: where it went says more (a wall missing) than how far.
+  void check_step_length(const Simulation& sim, double most) const {
     const auto& P = sim.particles();
     const std::size_t n = P.size();
     const double h = sim.kernel_radius(), dt = sim.timestep();
-    double most = 0;
-#pragma omp parallel for schedule(static) reduction(max : most)
-    for (std::size_t i = 0; i < n; ++i) most = std::max(most, moved2(P, i));
     if (!(most > kMostMove * kMostMove * h * h)) return;
     for (std::size_t i = 0; i < n; ++i)
       if (!sim.domain().contains(P.x()[i], P.y()[i], P.z()[i])) return;
@@ -323,14 +332,13 @@ class PositionBasedFluid : public Fix {
         P.ids()[far], d, d / h, kMostMove, speed, dt, kStableMove, speed, kStableMove * h / speed));
   }
 
-  void measure_error(Simulation& sim, const real* excess) {
-    const std::size_t n = sim.particles().size(), all = sim.global_count();
+  // The iteration's mean compression (its exact sum over the particles: `compressed`) and
+  // largest (the threads' most_), for the report and the adaptive count.
+  void measure_error(Simulation& sim, double compressed) {
+    const std::size_t all = sim.global_count();
     const bool ranks = sim.particles().distributed();
-    const double mean =
-        all ? deterministic_sum(n, [&](std::size_t i) { return double(excess[i]); }, ranks) / double(all) : 0;
-    real local_most = 0;
-#pragma omp parallel for simd reduction(max : local_most) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) local_most = excess[i] > local_most ? excess[i] : local_most;
+    const double mean = all ? compressed / double(all) : 0;
+    const real local_most = *std::max_element(most_.begin(), most_.end());
     // Over the ranks only when the target reads it: one reduction per iteration otherwise.
     const double most = ranks && target_max_ > 0 ? comm::max(double(local_most)) : double(local_most);
     reached_ = (target_ <= 0 || mean <= target_) && (target_max_ <= 0 || most <= target_max_);
@@ -352,6 +360,8 @@ class PositionBasedFluid : public Fix {
   real uniform_mass_ = 0;  // every particle's mass, when all are equal (the pair sums need not gather it)
   FieldId lambda_ = 0, pressure_ = 0;
   std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
+  std::vector<real> most_;       // each thread's largest compression in an iteration
+  std::vector<double> farthest_;  // each thread's longest move (squared) in a step
   std::vector<real> corrected_[3], wall_share_;  // with the pressure: positions after the last correction, wall share
   real rest_density_ = 1000;
   std::vector<real*> wall_grad_;  // each wall's density gradient (3 arrays per wall), within an iteration

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/sph/pair_sums.hpp"
@@ -42,23 +43,24 @@ class VorticityConfinement : public Fix {
     velocity_curl(sim, volume, wx, wy, wz, magnitude);
     sim.update_ghosts({magnitude});
 
-    // eta, the gradient of |omega|; it reads no velocity, so each particle's velocity can
-    // take its acceleration as soon as eta is known.
+    // eta, the gradient of |omega|; it reads no velocity, so each particle's velocity takes
+    // its acceleration as soon as its eta is known, in the same pass.
     real *ex = sim.scratch(0), *ey = sim.scratch(1), *ez = sim.scratch(2);
     const PairInput pairs{sim.neighbors(), P.x(), P.y(), P.z(), P.mass(), 0, K, n};
-    gradient_sums(pairs, volume.data(), magnitude, ex, ey, ez);
     const real scale = real(epsilon_ * sim.kernel_radius() * sim.timestep());
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const real wi = magnitude[i];
-      const real eta[3] = {ex[i], ey[i], ez[i]};
-      const real len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
-      if (!(len > real(1e-12) * (wi / K.h + real(1e-30)))) continue;  // no direction where |omega| is flat
-      const real s = scale * wi / len;
-      vx[i] += s * (eta[1] * wz[i] - eta[2] * wy[i]);
-      vy[i] += s * (eta[2] * wx[i] - eta[0] * wz[i]);
-      vz[i] += s * (eta[0] * wy[i] - eta[1] * wx[i]);
-    }
+    for_blocks(n, [&](std::size_t begin, std::size_t end) {
+      gradient_sums(pairs, begin, end, volume.data(), magnitude, ex, ey, ez);
+      for (std::size_t i = begin; i < end; ++i) {
+        const real wi = magnitude[i];
+        const real eta[3] = {ex[i], ey[i], ez[i]};
+        const real len = std::sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
+        if (!(len > real(1e-12) * (wi / K.h + real(1e-30)))) continue;  // no direction where |omega| is flat
+        const real s = scale * wi / len;
+        vx[i] += s * (eta[1] * wz[i] - eta[2] * wy[i]);
+        vy[i] += s * (eta[2] * wx[i] - eta[0] * wz[i]);
+        vz[i] += s * (eta[0] * wy[i] - eta[1] * wx[i]);
+      }
+    });
   }
 
  private:

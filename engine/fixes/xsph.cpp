@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/sph/pair_sums.hpp"
@@ -20,22 +21,26 @@ class XsphViscosity : public Fix {
   bool needs_neighbors() const override { return true; }
   bool runs_distributed() const override { return true; }  // ghosts' velocities refreshed
 
+  // The smoothed velocities are written into scratch arrays that then take the velocities'
+  // place: the sums read the neighbours' velocities before any is smoothed, in one pass.
   void velocity_post(Simulation& sim) override {
     const std::vector<real>& volume = sim.summed_volume();
     auto& P = sim.particles();
     const std::size_t n = P.size();
-    real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
-    real *dx = sim.scratch(0), *dy = sim.scratch(1), *dz = sim.scratch(2);
-    sim.update_ghosts({vx, vy, vz});
+    const real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    real *next_x = sim.scratch(0), *next_y = sim.scratch(1), *next_z = sim.scratch(2);
+    sim.update_ghosts({P.vx(), P.vy(), P.vz()});
     const PairInput pairs{sim.neighbors(), P.x(), P.y(), P.z(), P.mass(), 0, sim.kernels(), n};
-    smoothing_sums(pairs, volume.data(), vx, vy, vz, dx, dy, dz);
     const real c = real(c_);
-#pragma omp parallel for simd schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      vx[i] += c * dx[i];
-      vy[i] += c * dy[i];
-      vz[i] += c * dz[i];
-    }
+    for_blocks(n, [&](std::size_t begin, std::size_t end) {
+      smoothing_sums(pairs, begin, end, volume.data(), vx, vy, vz, next_x, next_y, next_z);
+      for (std::size_t i = begin; i < end; ++i) {
+        next_x[i] = vx[i] + c * next_x[i];
+        next_y[i] = vy[i] + c * next_y[i];
+        next_z[i] = vz[i] + c * next_z[i];
+      }
+    });
+    for (int k = 0; k < 3; ++k) sim.swap_with_scratch(Particles::kVelocity, k, static_cast<std::size_t>(k));
   }
 
  private:

@@ -10,6 +10,9 @@ Contact keep_out(const SolidMap& map, const ContactDistances& at, const real p0[
   const real step[3] = {p[0] - p0[0], p[1] - p0[1], p[2] - p0[2]};
   const real len = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
   const real hair = at.hair, gap = at.gap, reach = gap - hair / 2;
+  // A non-finite move (a blow-up, which the run loop names at the end of the step) has no
+  // path to march along: the march below would never end.
+  if (!std::isfinite(len)) return Contact::none;
   if (far_from_wall(start_distance, len, reach)) return Contact::none;
   const auto where = map.distance(p[0], p[1], p[2], d, nullptr);
   const bool inside = where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < reach);

@@ -65,7 +65,7 @@ void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t 
 }
 
 void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t n, const GridGeometry& geometry,
-                       const CellRange& range) {
+                       const CellRange& range, const std::int64_t* key) {
   geometry_ = geometry;
   range_ = range;
   for (int a = 0; a < 3; ++a) dims_[a] = std::max(1L, range.hi[a] - range.lo[a]);
@@ -107,38 +107,46 @@ void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t 
     for (std::size_t i = begin; i < end; ++i) {
       sorted_[hist[cell_[i]]++] = static_cast<std::uint32_t>(i);
     }
+    if (key) {  // in the same region: the threads meet once more, not twice
+#pragma omp barrier
+#pragma omp for schedule(static) nowait  // the region's end waits
+      for (std::size_t c = 0; c < ncells; ++c) order_cell(c, key);
+    }
+  }
+}
+
+// Cells hold a few particles, mostly in order already: insertion sort.
+void NeighborGrid::order_cell(std::size_t c, const std::int64_t* key) {
+  for (std::uint32_t s = cell_start_[c] + 1; s < cell_start_[c + 1]; ++s) {
+    const std::uint32_t moving = sorted_[s];
+    std::uint32_t t = s;
+    for (; t > cell_start_[c] && key[sorted_[t - 1]] > key[moving]; --t) sorted_[t] = sorted_[t - 1];
+    sorted_[t] = moving;
   }
 }
 
 void NeighborGrid::order_cells_by(const std::int64_t* key) {
   const std::size_t ncells = cell_count();
-  // Cells hold a few particles, mostly in order already: insertion sort.
 #pragma omp parallel for schedule(static)
-  for (std::size_t c = 0; c < ncells; ++c)
-    for (std::uint32_t s = cell_start_[c] + 1; s < cell_start_[c + 1]; ++s) {
-      const std::uint32_t moving = sorted_[s];
-      std::uint32_t t = s;
-      for (; t > cell_start_[c] && key[sorted_[t - 1]] > key[moving]; --t) sorted_[t] = sorted_[t - 1];
-      sorted_[t] = moving;
-    }
+  for (std::size_t c = 0; c < ncells; ++c) order_cell(c, key);
 }
 
 void NeighborGrid::build_lists(const real* x, const real* y, const real* z, double h, std::size_t listed) {
   const std::size_t binned = cell_.size(), n = std::min(listed, binned);
-  const real* position[3] = {x, y, z};
-  for (int a = 0; a < 3; ++a) {
-    packed_[a].resize(binned + kListPadding);
-    real* packed = packed_[a].data();
-    const real* p = position[a];
-#pragma omp parallel for schedule(static)
-    for (std::size_t s = 0; s < binned; ++s) packed[s] = p[sorted_[s]];
-  }
+  for (auto& packed : packed_) packed.resize(binned + kListPadding);
   const CellSearch search{x, y, z, packed_[0].data(), packed_[1].data(), packed_[2].data(), sorted_.data(),
                           cell_.data(), cell_start_.data(), {dims_[0], dims_[1], dims_[2]},
                           real(h * h), n};
   offset_.resize(n + 1);
-  one_pass_ = fill_in_one_pass(search);
-  if (!one_pass_) fill_in_two_passes(search);
+  bool packed = false;
+  one_pass_ = fill_in_one_pass(search, packed);
+  if (!one_pass_) {
+    if (!packed) {
+#pragma omp parallel for schedule(static)
+      for (std::size_t slot = 0; slot < binned; ++slot) pack(search, slot);
+    }
+    fill_in_two_passes(search);
+  }
   // Each block's pairs, where the next build's segments start.
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   block_pairs_.resize(blocks);
@@ -146,13 +154,22 @@ void NeighborGrid::build_lists(const real* x, const real* y, const real* z, doub
     block_pairs_[b] = offset_[std::min(n, (b + 1) * kBlock)] - offset_[b * kBlock];
 }
 
+// The positions in slot order, which the distance tests load as vectors.
+void NeighborGrid::pack(const CellSearch& search, std::size_t slot) {
+  const std::uint32_t i = sorted_[slot];
+  packed_[0][slot] = search.x[i];
+  packed_[1][slot] = search.y[i];
+  packed_[2][slot] = search.z[i];
+}
+
 // Lists move little from one step to the next, so the last build's pairs per block of
 // particles say where each block's lists will fit: each block writes into its own segment
 // (its last pairs, an eighth more and 64) in one pass, and the segments are then moved
 // together in block order. The distance tests run once, not twice (count, then fill); the
-// lists are the same. A block that does not fit sends the build to two passes.
-bool NeighborGrid::fill_in_one_pass(const CellSearch& search) {
-  const std::size_t n = search.n, blocks = (n + kBlock - 1) / kBlock;
+// lists are the same. A block that does not fit sends the build to two passes. All of it,
+// the positions' packing first, in one parallel region.
+bool NeighborGrid::fill_in_one_pass(const CellSearch& search, bool& packed) {
+  const std::size_t n = search.n, blocks = (n + kBlock - 1) / kBlock, binned = cell_.size();
   if (blocks == 0 || block_pairs_.size() != blocks) return false;
   segment_.resize(blocks + 1);
   segment_[0] = 0;
@@ -165,19 +182,41 @@ bool NeighborGrid::fill_in_one_pass(const CellSearch& search) {
   }
   if (list_.size() < room) list_.resize(room);
   used_.resize(blocks);
-  if (!fill_neighbor_blocks(search, kBlock, blocks, segment_.data(), offset_.data(), list_.data(), used_.data()))
-    return false;
-  std::uint64_t at = 0;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    if (segment_[b] != at)
-      std::memmove(list_.data() + at, list_.data() + segment_[b], used_[b] * sizeof(std::uint32_t));
-    segment_[b] -= at;  // now how far block b's lists moved
-    at += used_[b];
+  block_most_.resize(blocks);
+  packed = true;
+  bool fits = true;
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (std::size_t slot = 0; slot < binned; ++slot) pack(search, slot);
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t b = 0; b < blocks; ++b)
+      used_[b] = fill_neighbor_block(search, b * kBlock, std::min(n, (b + 1) * kBlock), list_.data(), segment_[b],
+                                     segment_[b + 1], offset_.data(), block_most_[b]);
+#pragma omp single
+    {
+      std::uint64_t at = 0;
+      for (std::size_t b = 0; b < blocks && fits; ++b) {
+        fits = used_[b] != kBlockFull;
+        if (!fits) break;
+        if (segment_[b] != at)
+          std::memmove(list_.data() + at, list_.data() + segment_[b], used_[b] * sizeof(std::uint32_t));
+        segment_[b] -= at;  // now how far block b's lists moved
+        at += used_[b];
+      }
+      if (fits) {
+        offset_[n] = static_cast<std::uint32_t>(at);
+        std::fill(list_.begin() + static_cast<std::ptrdiff_t>(at),
+                  list_.begin() + static_cast<std::ptrdiff_t>(at + kListPadding), 0u);
+      }
+    }
+    if (fits) {
+#pragma omp for schedule(static) nowait  // the region's end waits
+      for (std::size_t i = 0; i < n; ++i) offset_[i] -= static_cast<std::uint32_t>(segment_[i / kBlock]);
+    }
   }
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) offset_[i] -= static_cast<std::uint32_t>(segment_[i / kBlock]);
-  offset_[n] = static_cast<std::uint32_t>(at);
-  std::fill(list_.begin() + static_cast<std::ptrdiff_t>(at), list_.begin() + static_cast<std::ptrdiff_t>(at + kListPadding), 0u);
+  if (!fits) return false;
+  most_ = *std::max_element(block_most_.begin(), block_most_.end());
   return true;
 }
 
@@ -186,7 +225,9 @@ void NeighborGrid::fill_in_two_passes(const CellSearch& search) {
   offset_[0] = 0;
   count_neighbors(search, offset_.data() + 1);
   std::uint64_t pairs = 0;  // the running sum, checked against the offsets' range
+  most_ = 0;
   for (std::size_t i = 0; i < n; ++i) {
+    most_ = std::max(most_, offset_[i + 1]);
     pairs += offset_[i + 1];
     if (pairs > kMostPairs)
       throw Error(fmt::format("{} particles have more than {} neighbours in all ({:.3g} per particle): the fluid has "
@@ -211,10 +252,5 @@ double NeighborGrid::mean_neighbors() const {
   return n == 0 ? 0.0 : static_cast<double>(offset_[n]) / static_cast<double>(n);
 }
 
-std::uint32_t NeighborGrid::max_neighbors() const {
-  std::uint32_t most = 0;
-  for (std::size_t i = 0; i < particle_count(); ++i) most = std::max(most, count(i));
-  return most;
-}
 
 }  // namespace pbf

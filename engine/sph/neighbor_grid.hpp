@@ -55,9 +55,11 @@ class NeighborGrid {
   // Bins particles into cells; afterwards sorted_order() lists particles cell by cell.
   void bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h);
   // The same over the cells `range` of `geometry`, which must hold every particle's cell (a
-  // rank of a distributed run bins its own particles and its ghosts in the cells they cover).
+  // rank of a distributed run bins its own particles and its ghosts in the cells they cover);
+  // with a `key`, the particles of each cell ordered by it, as order_cells_by does (in the
+  // same parallel region).
   void bin(const real* x, const real* y, const real* z, std::size_t n, const GridGeometry& geometry,
-           const CellRange& range);
+           const CellRange& range, const std::int64_t* key = nullptr);
   // Orders the particles of each cell by `key` (ascending, keys distinct) in sorted_order().
   void order_cells_by(const std::int64_t* key);
   // Builds the lists of neighbours j != i with |x_i - x_j|^2 < h^2 of the particles i < listed
@@ -97,13 +99,15 @@ class NeighborGrid {
   double mean_neighbors() const;
   // Whether the last build_lists took one pass (the lists fitted where the build before said).
   bool built_in_one_pass() const { return one_pass_; }
-  std::uint32_t max_neighbors() const;
+  // The longest list of the last build.
+  std::uint32_t max_neighbors() const { return most_; }
 
   // Largest number of cells the grid allocates for n particles.
   static std::size_t max_cells(std::size_t n);
 
  private:
   std::size_t cell_of(real x, real y, real z) const;
+  void order_cell(std::size_t c, const std::int64_t* key);
 
   GridGeometry geometry_;
   CellRange range_;
@@ -118,10 +122,13 @@ class NeighborGrid {
   // The one-pass build (build_lists): pairs per block of kBlock particles at the last build,
   // and this build's segments and their use.
   static constexpr std::size_t kBlock = 1024;
-  bool fill_in_one_pass(const CellSearch& search);
+  bool fill_in_one_pass(const CellSearch& search, bool& packed);
   void fill_in_two_passes(const CellSearch& search);
+  void pack(const CellSearch& search, std::size_t slot);
   std::vector<std::uint64_t> block_pairs_, segment_, used_;
+  std::vector<std::uint32_t> block_most_;  // the longest list of each block
   bool one_pass_ = false;
+  std::uint32_t most_ = 0;  // the longest list
 };
 
 }  // namespace pbf

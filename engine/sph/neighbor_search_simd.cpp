@@ -92,36 +92,33 @@ void FillNeighbors(const CellSearch& s, const std::uint32_t* offset, std::uint32
   }
 }
 
-bool FillNeighborBlocks(const CellSearch& s, std::size_t block, std::size_t blocks, const std::uint64_t* segment,
-                        std::uint32_t* offset, std::uint32_t* list, std::uint64_t* used) {
+std::uint64_t FillNeighborBlock(const CellSearch& s, std::size_t begin, std::size_t end, std::uint32_t* list,
+                                std::uint64_t first, std::uint64_t last, std::uint32_t* offset, std::uint32_t& most) {
   const hn::ScalableTag<real> d;
   const std::size_t N = hn::Lanes(d);
-  int overflow = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(| : overflow)
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::uint32_t* out = list + segment[b];
-    const std::uint32_t* const end = list + segment[b + 1];
-    bool full = false;
-    for (std::size_t i = b * block; i < std::min(s.n, (b + 1) * block) && !full; ++i) {
-      offset[i] = static_cast<std::uint32_t>(out - list);  // below segment[blocks], checked to fit
-      for_each_row(s, i, [&](std::size_t first, std::size_t last, bool own) {
-        for (std::size_t slot = first; slot < last && !full; slot += N) {
-          std::uint8_t bytes[8] = {};
-          hn::StoreMaskBits(d, within(d, s, i, slot, last, own), bytes);
-          std::uint64_t bits;
-          std::memcpy(&bits, bytes, sizeof bits);
-          if (static_cast<std::ptrdiff_t>(__builtin_popcountll(bits)) > end - out) {
-            full = true;
-            break;
-          }
-          for (; bits; bits &= bits - 1) *out++ = s.sorted[slot + static_cast<std::size_t>(__builtin_ctzll(bits))];
+  std::uint32_t* out = list + first;
+  const std::uint32_t* const stop = list + last;
+  bool full = false;
+  most = 0;
+  for (std::size_t i = begin; i < end && !full; ++i) {
+    const std::uint32_t* const start = out;
+    offset[i] = static_cast<std::uint32_t>(out - list);  // below the last segment's end, checked to fit
+    for_each_row(s, i, [&](std::size_t first_slot, std::size_t last_slot, bool own) {
+      for (std::size_t slot = first_slot; slot < last_slot && !full; slot += N) {
+        std::uint8_t bytes[8] = {};
+        hn::StoreMaskBits(d, within(d, s, i, slot, last_slot, own), bytes);
+        std::uint64_t bits;
+        std::memcpy(&bits, bytes, sizeof bits);
+        if (static_cast<std::ptrdiff_t>(__builtin_popcountll(bits)) > stop - out) {
+          full = true;
+          break;
         }
-      });
-    }
-    used[b] = static_cast<std::uint64_t>(out - (list + segment[b]));
-    if (full) overflow = 1;
+        for (; bits; bits &= bits - 1) *out++ = s.sorted[slot + static_cast<std::size_t>(__builtin_ctzll(bits))];
+      }
+    });
+    most = std::max(most, static_cast<std::uint32_t>(out - start));
   }
-  return overflow == 0;
+  return full ? kBlockFull : static_cast<std::uint64_t>(out - (list + first));
 }
 
 }  // namespace HWY_NAMESPACE
@@ -133,7 +130,7 @@ namespace pbf {
 
 HWY_EXPORT(CountNeighbors);
 HWY_EXPORT(FillNeighbors);
-HWY_EXPORT(FillNeighborBlocks);
+HWY_EXPORT(FillNeighborBlock);
 
 void count_neighbors(const CellSearch& search, std::uint32_t* counts) {
   HWY_DYNAMIC_DISPATCH(CountNeighbors)(search, counts);
@@ -143,10 +140,9 @@ void fill_neighbors(const CellSearch& search, const std::uint32_t* offset, std::
   HWY_DYNAMIC_DISPATCH(FillNeighbors)(search, offset, list);
 }
 
-bool fill_neighbor_blocks(const CellSearch& search, std::size_t block, std::size_t blocks,
-                          const std::uint64_t* segment, std::uint32_t* offset, std::uint32_t* list,
-                          std::uint64_t* used) {
-  return HWY_DYNAMIC_DISPATCH(FillNeighborBlocks)(search, block, blocks, segment, offset, list, used);
+std::uint64_t fill_neighbor_block(const CellSearch& search, std::size_t begin, std::size_t end, std::uint32_t* list,
+                                  std::uint64_t first, std::uint64_t last, std::uint32_t* offset, std::uint32_t& most) {
+  return HWY_DYNAMIC_DISPATCH(FillNeighborBlock)(search, begin, end, list, first, last, offset, most);
 }
 
 }  // namespace pbf

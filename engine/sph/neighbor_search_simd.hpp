@@ -26,12 +26,12 @@ void count_neighbors(const CellSearch& search, std::uint32_t* counts);
 // Writes particle i's neighbours to list[offset[i] ...], rows of cells in a fixed order
 // (z, then y), slots ascending within a row (in parallel).
 void fill_neighbors(const CellSearch& search, const std::uint32_t* offset, std::uint32_t* list);
-// One pass, no counts: particles [b * block, (b + 1) * block) write their lists, in the same
-// order as fill_neighbors, into list[segment[b] .. segment[b + 1]), offset[i] where particle
-// i's list starts; used[b] is how much of its segment block b filled. False when some block's
-// lists did not fit its segment (the lists are then incomplete).
-bool fill_neighbor_blocks(const CellSearch& search, std::size_t block, std::size_t blocks,
-                          const std::uint64_t* segment, std::uint32_t* offset, std::uint32_t* list,
-                          std::uint64_t* used);
+// One pass, no counts: particles [begin, end) write their lists, in the same order as
+// fill_neighbors, into list[first .. last), offset[i] where particle i's list starts. Returns
+// how many indices they wrote, or kBlockFull when their lists did not fit (they are then
+// incomplete). Opens no parallel region: the caller's threads take blocks.
+constexpr std::uint64_t kBlockFull = ~std::uint64_t(0);
+std::uint64_t fill_neighbor_block(const CellSearch& search, std::size_t begin, std::size_t end, std::uint32_t* list,
+                                  std::uint64_t first, std::uint64_t last, std::uint32_t* offset, std::uint32_t& most);
 
 }  // namespace pbf

@@ -6,11 +6,12 @@
 // and get zero mass, so they add exactly nothing.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "engine/sph/pair_sums.cpp"
+#include "engine/sph/pair_sums.hpp"
+
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 #include "engine/sph/neighbor_grid.hpp"
-#include "engine/sph/pair_sums.hpp"
 
 HWY_BEFORE_NAMESPACE();
 namespace pbf {
@@ -127,11 +128,10 @@ HWY_INLINE void for_neighbor_vectors(const PairInput& in, std::size_t i, const r
     }
 }
 
-void DensitySums(const PairInput& in, real* rho) {
+void DensitySums(const PairInput& in, std::size_t begin, std::size_t end, real* rho) {
   const KernelVectors K(in.kernels);
   const real w0 = in.kernels.W(0);
-#pragma omp parallel for schedule(static, 256)
-  for (std::size_t i = 0; i < in.n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     Sum sum;
     for_neighbor_vectors(in, i, masses(in), in.uniform_mass,
                          [&](std::size_t v, const Neighbors& nb) { sum.add(v, hn::Mul(nb.weight, K.W(nb.r2))); });
@@ -139,14 +139,13 @@ void DensitySums(const PairInput& in, real* rho) {
   }
 }
 
-void ConstraintSums(const PairInput& in, real inv_rho0, real* rho, real* grad_x, real* grad_y, real* grad_z,
-                    real* grad_sq) {
+void ConstraintSums(const PairInput& in, std::size_t begin, std::size_t end, real inv_rho0, real* rho, real* grad_x,
+                    real* grad_y, real* grad_z, real* grad_sq) {
   const D d;
   const KernelVectors K(in.kernels);
   const real w0 = in.kernels.W(0);
   const V inv_rho0_v = hn::Set(d, inv_rho0);
-#pragma omp parallel for schedule(static, 256)
-  for (std::size_t i = 0; i < in.n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     Sum density, gx, gy, gz, sq;
     for_neighbor_vectors(in, i, masses(in), in.uniform_mass, [&](std::size_t v, const Neighbors& nb) {
       V w, gw;
@@ -166,13 +165,12 @@ void ConstraintSums(const PairInput& in, real inv_rho0, real* rho, real* grad_x,
   }
 }
 
-void ConstraintCorrections(const PairInput& in, const real* lambda, real inv_rho0, real scorr_scale, real inv_wdq,
-                           int scorr_n, real* dx, real* dy, real* dz) {
+void ConstraintCorrections(const PairInput& in, std::size_t begin, std::size_t end, const real* lambda, real inv_rho0,
+                           real scorr_scale, real inv_wdq, int scorr_n, real* dx, real* dy, real* dz) {
   const D d;
   const KernelVectors K(in.kernels);
   const V inv_rho0_v = hn::Set(d, inv_rho0), minus_scale = hn::Set(d, -scorr_scale), inv_wdq_v = hn::Set(d, inv_wdq);
-#pragma omp parallel for schedule(static, 256)
-  for (std::size_t i = 0; i < in.n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     const V lambda_i = hn::Set(d, lambda[i]);
     Sum cx, cy, cz;
     for_neighbor_vectors(in, i, masses(in), in.uniform_mass, [&](std::size_t v, const Neighbors& nb) {
@@ -194,12 +192,11 @@ void ConstraintCorrections(const PairInput& in, const real* lambda, real inv_rho
   }
 }
 
-void CurlSums(const PairInput& in, const real* volume, const real* vx, const real* vy, const real* vz, real* wx, real* wy,
-              real* wz, real* magnitude) {
+void CurlSums(const PairInput& in, std::size_t begin, std::size_t end, const real* volume, const real* vx,
+              const real* vy, const real* vz, real* wx, real* wy, real* wz, real* magnitude) {
   const D d;
   const KernelVectors K(in.kernels);
-#pragma omp parallel for schedule(static, 256)
-  for (std::size_t i = 0; i < in.n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     const V vxi = hn::Set(d, vx[i]), vyi = hn::Set(d, vy[i]), vzi = hn::Set(d, vz[i]);
     Sum ax, ay, az;
     for_neighbor_vectors(in, i, volume, 0, [&](std::size_t v, const Neighbors& nb) {
@@ -219,11 +216,11 @@ void CurlSums(const PairInput& in, const real* volume, const real* vx, const rea
   }
 }
 
-void GradientSums(const PairInput& in, const real* volume, const real* f, real* ex, real* ey, real* ez) {
+void GradientSums(const PairInput& in, std::size_t begin, std::size_t end, const real* volume, const real* f, real* ex,
+                  real* ey, real* ez) {
   const D d;
   const KernelVectors K(in.kernels);
-#pragma omp parallel for schedule(static, 256)
-  for (std::size_t i = 0; i < in.n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     const V fi = hn::Set(d, f[i]);
     Sum ax, ay, az;
     for_neighbor_vectors(in, i, volume, 0, [&](std::size_t v, const Neighbors& nb) {
@@ -239,12 +236,11 @@ void GradientSums(const PairInput& in, const real* volume, const real* f, real* 
   }
 }
 
-void SmoothingSums(const PairInput& in, const real* volume, const real* vx, const real* vy, const real* vz, real* dx,
-                   real* dy, real* dz) {
+void SmoothingSums(const PairInput& in, std::size_t begin, std::size_t end, const real* volume, const real* vx,
+                   const real* vy, const real* vz, real* dx, real* dy, real* dz) {
   const D d;
   const KernelVectors K(in.kernels);
-#pragma omp parallel for schedule(static, 256)
-  for (std::size_t i = 0; i < in.n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     const V vxi = hn::Set(d, vx[i]), vyi = hn::Set(d, vy[i]), vzi = hn::Set(d, vz[i]);
     Sum ax, ay, az;
     for_neighbor_vectors(in, i, volume, 0, [&](std::size_t v, const Neighbors& nb) {
@@ -287,30 +283,34 @@ HWY_EXPORT(CurlSums);
 HWY_EXPORT(GradientSums);
 HWY_EXPORT(SmoothingSums);
 
-void density_sums(const PairInput& in, real* rho) { HWY_DYNAMIC_DISPATCH(DensitySums)(in, rho); }
-
-void constraint_sums(const PairInput& in, real inv_rho0, real* rho, real* grad_x, real* grad_y, real* grad_z,
-                     real* grad_sq) {
-  HWY_DYNAMIC_DISPATCH(ConstraintSums)(in, inv_rho0, rho, grad_x, grad_y, grad_z, grad_sq);
+void density_sums(const PairInput& in, std::size_t begin, std::size_t end, real* rho) {
+  HWY_DYNAMIC_DISPATCH(DensitySums)(in, begin, end, rho);
 }
 
-void constraint_corrections(const PairInput& in, const real* lambda, real inv_rho0, real scorr_scale, real inv_wdq,
-                            int scorr_n, real* dx, real* dy, real* dz) {
-  HWY_DYNAMIC_DISPATCH(ConstraintCorrections)(in, lambda, inv_rho0, scorr_scale, inv_wdq, scorr_n, dx, dy, dz);
+void constraint_sums(const PairInput& in, std::size_t begin, std::size_t end, real inv_rho0, real* rho, real* grad_x,
+                     real* grad_y, real* grad_z, real* grad_sq) {
+  HWY_DYNAMIC_DISPATCH(ConstraintSums)(in, begin, end, inv_rho0, rho, grad_x, grad_y, grad_z, grad_sq);
 }
 
-void curl_sums(const PairInput& in, const real* volume, const real* vx, const real* vy, const real* vz, real* wx,
-               real* wy, real* wz, real* magnitude) {
-  HWY_DYNAMIC_DISPATCH(CurlSums)(in, volume, vx, vy, vz, wx, wy, wz, magnitude);
+void constraint_corrections(const PairInput& in, std::size_t begin, std::size_t end, const real* lambda, real inv_rho0,
+                            real scorr_scale, real inv_wdq, int scorr_n, real* dx, real* dy, real* dz) {
+  HWY_DYNAMIC_DISPATCH(ConstraintCorrections)
+  (in, begin, end, lambda, inv_rho0, scorr_scale, inv_wdq, scorr_n, dx, dy, dz);
 }
 
-void gradient_sums(const PairInput& in, const real* volume, const real* f, real* ex, real* ey, real* ez) {
-  HWY_DYNAMIC_DISPATCH(GradientSums)(in, volume, f, ex, ey, ez);
+void curl_sums(const PairInput& in, std::size_t begin, std::size_t end, const real* volume, const real* vx,
+               const real* vy, const real* vz, real* wx, real* wy, real* wz, real* magnitude) {
+  HWY_DYNAMIC_DISPATCH(CurlSums)(in, begin, end, volume, vx, vy, vz, wx, wy, wz, magnitude);
 }
 
-void smoothing_sums(const PairInput& in, const real* volume, const real* vx, const real* vy, const real* vz, real* dx,
-                    real* dy, real* dz) {
-  HWY_DYNAMIC_DISPATCH(SmoothingSums)(in, volume, vx, vy, vz, dx, dy, dz);
+void gradient_sums(const PairInput& in, std::size_t begin, std::size_t end, const real* volume, const real* f, real* ex,
+                   real* ey, real* ez) {
+  HWY_DYNAMIC_DISPATCH(GradientSums)(in, begin, end, volume, f, ex, ey, ez);
+}
+
+void smoothing_sums(const PairInput& in, std::size_t begin, std::size_t end, const real* volume, const real* vx,
+                    const real* vy, const real* vz, real* dx, real* dy, real* dz) {
+  HWY_DYNAMIC_DISPATCH(SmoothingSums)(in, begin, end, volume, vx, vy, vz, dx, dy, dz);
 }
 
 }  // namespace pbf

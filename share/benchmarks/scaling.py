@@ -14,7 +14,8 @@ on both sides. Sub-commands:
            alternately on the 33,750-particle dam break (75 steps, 2 threads): each run's
            particle-steps per second, the medians and the new / old speed ratio.
   strong   strong scaling at the count nearest 32,768 (33,750), 1 .. nproc threads: time
-           per step, speed-up over 1 thread, parallel efficiency.
+           per step, speed-up over 1 thread, parallel efficiency; and the same beside one
+           CPU-bound process (a machine the run shares), speed-up over 1 thread beside it.
   weak     weak scaling at about 2,197 particles per thread: time per step, efficiency
            t(1) / t(p), and the same corrected for the counts the lattice allows.
   profile  the original study's seven phases at about 16,000 particles (17,280), at 1
@@ -51,6 +52,7 @@ seconds); explicit options still win over it. On Debian, run it with /usr/bin/py
 a pyenv or venv python3 lacks matplotlib.
 """
 import argparse
+import contextlib
 import datetime
 import math
 import os
@@ -60,6 +62,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.normpath(os.path.join(HERE, "..", ".."))
@@ -456,15 +459,32 @@ def compare_runs(args, work, old, new, old_name):
 
 # ---------------------------------------------------------------- strong and weak
 
-def scaling_runs(args, command, scenes, threads, binary, work):
-    """Median ms per step for each thread count; the thread counts alternate per repeat."""
+@contextlib.contextmanager
+def cpu_load(count):
+    """`count` CPU-bound processes (yes > /dev/null) for the length of the block."""
+    processes = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(count)]
+    try:
+        if processes:
+            time.sleep(0.2)  # running before the measured run starts
+        yield
+    finally:
+        for p in processes:
+            p.kill()
+            p.wait()
+
+
+def scaling_runs(args, command, scenes, threads, binary, work, load=0):
+    """Median ms per step for each thread count; the thread counts alternate per repeat.
+    load: CPU-bound processes beside each run (a machine the run shares)."""
     repeats = setting(args, command, "repeats")
     times = {p: [] for p in threads}
+    beside = f", beside {plural(load, 'CPU-bound process')}" if load else ""
     for r in range(repeats):
         for p in threads:
-            table = run_engine(binary, scenes[p][0], p, work)
+            with cpu_load(load):
+                table = run_engine(binary, scenes[p][0], p, work)
             times[p].append(step_ms(table))
-            progress(f"{command}: run {r + 1}/{repeats}, {plural(p, 'thread')}, "
+            progress(f"{command}: run {r + 1}/{repeats}, {plural(p, 'thread')}{beside}, "
                      f"{scenes[p][1]} particles: {times[p][-1]:.3f} ms per step")
     return {p: median(t) for p, t in times.items()}
 
@@ -476,12 +496,22 @@ def cmd_strong(args, work):
     t = scaling_runs(args, "strong", {p: scene for p in threads}, threads, binary, work)
     speedup = {p: t[1] / t[p] for p in threads}
     rows = [[p, f"{t[p]:.3f}", f"{speedup[p]:.2f}", f"{speedup[p] / p:.0%}"] for p in threads]
+    # The same on a machine the run shares: one CPU-bound process beside each run. The
+    # speed-up is over 1 thread under the same load; at most 1 is what the run can expect
+    # when its threads outnumber the free cores (docs/performance/shared.md).
+    loaded = scaling_runs(args, "strong", {p: scene for p in threads}, threads, binary, work, load=1)
+    rows += [[f"{p}, beside a CPU-bound process", f"{loaded[p]:.3f}", f"{loaded[1] / loaded[p]:.2f}", ""]
+             for p in threads]
     text = (f"## Strong scaling\n\nThe dam break of {scene[1]} particles, {steps} steps; "
-            f"medians of {setting(args, 'strong', 'repeats')} runs.\n\n"
+            f"medians of {setting(args, 'strong', 'repeats')} runs, alone on the machine and beside "
+            "one CPU-bound process (`yes > /dev/null`), whose speed-up is over 1 thread beside "
+            "it.\n\n"
             + md_table(["threads", "ms per step", "speed-up", "efficiency"], rows))
 
     def plot(ax):
         ax.plot(threads, [speedup[p] for p in threads], "o-", label="measured")
+        ax.plot(threads, [loaded[1] / loaded[p] for p in threads], "s:",
+                label="beside a CPU-bound process")
         ax.plot(threads, threads, "k--", lw=0.8, label="ideal")
         ax.set(xlabel="threads", ylabel="speed-up over 1 thread",
                title=f"Strong scaling, {scene[1]} particles")

@@ -1876,7 +1876,12 @@ def gen_cli(g):
         ("run_misspelt_option", f"run {ok} --thread 2", "refused", "--thread", "exit=2"),
         ("run_log_empty", f"run {ok} --log ''", "refused", "--log", "exit=2; raw"),
         ("run_log_is_script", "run s.lua --log s.lua", "refused", "s.lua", "exit=2; raw; repeat=s.lua:1:print(1)\\n"),
-        ("run_omp_threads_100000", f"run {ok}", "refused", "OMP_NUM_THREADS", "exit=2; env=OMP_NUM_THREADS=100000"),
+        # An OMP_NUM_THREADS that is no thread count: one warning, and the run goes on with the default.
+        ("run_omp_threads_100000", f"run {ok}", "warned", "OMP_NUM_THREADS='100000'",
+         "env=OMP_NUM_THREADS=100000"),
+        ("run_omp_threads_0", f"run {ok}", "warned", "OMP_NUM_THREADS='0'", "env=OMP_NUM_THREADS=0"),
+        ("run_omp_threads_word", f"run {ok}", "warned", "OMP_NUM_THREADS='many'",
+         "env=OMP_NUM_THREADS=many"),
         ("run_log_missing_dir", f"run {ok} --log nodir/x.log --log-level warn", "warned", "nodir/x.log", "raw"),
         ("run_log_under_file", f"run {ok} --log blocker/x.log --log-level warn", "warned", "blocker/x.log",
          "raw; touch=blocker"),
