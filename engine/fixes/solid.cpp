@@ -86,14 +86,13 @@ void SolidFix::external_forces(Simulation& sim) {
   started_step_ = sim.step();
   const real *x = P.x(), *y = P.y(), *z = P.z();
   const real far = real(map_.far_distance());  // far in the fluid: at least this far
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for_particles(n, [&](std::size_t i) {
     const real q[3] = {x[i], y[i], z[i]};
     real b[3], d;
     to_frame(before_, q, b);
     for (int a = 0; a < 3; ++a) start_[a][i] = b[a];
     start_distance_[i] = map_.distance(b[0], b[1], b[2], d, nullptr) == SolidMap::Where::fluid ? far : d;
-  }
+  });
 }
 
 void SolidFix::constraint(Simulation& sim, int) {
@@ -112,7 +111,7 @@ void SolidFix::constraint(Simulation& sim, int) {
   const bool moves_momentum = integrator && integrator->integration() == Integration::positions;
   const real* m = P.mass();
   const real inv_dt = real(1 / sim.timestep());
-#pragma omp parallel for schedule(static) reduction(min : lost)
+#pragma omp parallel for schedule(dynamic, kParticleBlock) reduction(min : lost)
   for (std::size_t i = 0; i < n; ++i) {
     real p[3] = {x[i], y[i], z[i]}, b[3];
     to_frame(now_, p, b);
@@ -144,19 +143,18 @@ void SolidFix::velocity_update(Simulation& sim) {
   const real keep = no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
   const real* m = P.mass();
   const real touching = real(contact_tolerance());
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < P.size(); ++i) {
+  for_particles(P.size(), [&](std::size_t i) {
     real d, g[3];
     const real q[3] = {x[i], y[i], z[i]};
     if (!motion_) {  // at rest, the step's start distance rules out most particles (keep_out)
       const real moved = std::sqrt((q[0] - start_[0][i]) * (q[0] - start_[0][i]) +
                                    (q[1] - start_[1][i]) * (q[1] - start_[1][i]) +
                                    (q[2] - start_[2][i]) * (q[2] - start_[2][i]));
-      if (far_from_wall(start_distance_[i], moved, touching)) continue;
+      if (far_from_wall(start_distance_[i], moved, touching)) return;
     }
-    if (distance_at(now_, q, d, g) != SolidMap::Where::near || d > touching) continue;
+    if (distance_at(now_, q, d, g) != SolidMap::Where::near || d > touching) return;
     const real len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    if (len == 0) continue;
+    if (len == 0) return;
     const real nrm[3] = {g[0] / len, g[1] / len, g[2] / len};
     real wall[3] = {0, 0, 0};
     wall_velocity(sim, q, wall);
@@ -173,11 +171,11 @@ void SolidFix::velocity_update(Simulation& sim) {
     vx[i] = after[0];
     vy[i] = after[1];
     vz[i] = after[2];
-  }
+  });
 }
 
 // The load of this step: the opposite of the momentum the wall gave the fluid, over dt
-// (deterministic sums), and its moment about the origin at the particles' positions.
+// (deterministic sums, in one pass), and its moment about the origin at the particles' positions.
 void SolidFix::end_of_step(Simulation& sim) {
   const auto& P = sim.particles();
   const real *x = P.x(), *y = P.y(), *z = P.z();
@@ -185,12 +183,18 @@ void SolidFix::end_of_step(Simulation& sim) {
   const double inv_dt = 1 / sim.timestep();
   const std::size_t n = P.size();
   const bool ranks = P.distributed();
-  load_[0] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(px[i]); }, ranks);
-  load_[1] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(py[i]); }, ranks);
-  load_[2] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(pz[i]); }, ranks);
-  load_[3] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(y[i] * pz[i] - z[i] * py[i]); }, ranks);
-  load_[4] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(z[i] * px[i] - x[i] * pz[i]); }, ranks);
-  load_[5] = -inv_dt * deterministic_sum(n, [&](std::size_t i) { return double(x[i] * py[i] - y[i] * px[i]); }, ranks);
+  const auto sums = deterministic_sums<6>(
+      n,
+      [&](std::size_t i) {
+        return std::array<double, 6>{double(px[i]),
+                                     double(py[i]),
+                                     double(pz[i]),
+                                     double(y[i] * pz[i] - z[i] * py[i]),
+                                     double(z[i] * px[i] - x[i] * pz[i]),
+                                     double(x[i] * py[i] - y[i] * px[i])};
+      },
+      ranks);
+  for (int k = 0; k < 6; ++k) load_[k] = -inv_dt * sums[static_cast<std::size_t>(k)];
 }
 
 // A world point in the frame the map was built in (the same point for a solid at rest), and back.

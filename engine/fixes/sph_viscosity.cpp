@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
 
@@ -51,8 +52,7 @@ class SphViscosity : public Fix {
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * sound_speed(sim)) * h, nu = real(nu_);
     const bool artificial = artificial_;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    for_particles(n, [&](std::size_t i) {
       real a[3] = {0, 0, 0};
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
         const real ux = vx[i] - vx[j], uy = vy[i] - vy[j], uz = vz[i] - vz[j];
@@ -72,7 +72,7 @@ class SphViscosity : public Fix {
       ax[i] += a[0];
       ay[i] += a[1];
       az[i] += a[2];
-    }
+    });
   }
 
  private:

@@ -25,6 +25,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
@@ -120,8 +121,7 @@ class Wcsph : public Fix {
       drho_.resize(n);
       const real diffusion = real(diffusion_ * sim.kernel_radius() * c0_);  // 2 delta h_s c0, h_s = h / 2
       const real hydrostatic = real(sim.rest_density() * std::fabs(gravity_) / (c0_ * c0_));
-#pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
+      for_particles(n, [&](std::size_t i) {
         real sum = 0, diffused = 0;
         grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
           const real g = K.grad_factor(r2);
@@ -142,16 +142,15 @@ class Wcsph : public Fix {
             moving += vw[0] * own[0] + vw[1] * own[1] + vw[2] * own[2];
         }
         drho_[i] = sum + 2 * (vx[i] * grad[0] + vy[i] * grad[1] + vz[i] * grad[2]) - 2 * moving;
-      }
-      for (std::size_t i = 0; i < n; ++i) rho[i] += dt * drho_[i];
+      });
+      for_particles(n, [&](std::size_t i) { rho[i] += dt * drho_[i]; });
     }
     check_density(sim, rho);
 
     pressure_from_density(sim, rho, p);
     sim.update_ghosts({rho, p});  // the force reads them at neighbours
 
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    for_particles(n, [&](std::size_t i) {
       const real pi = p[i] / (rho[i] * rho[i]);
       real a[3] = {0, 0, 0};
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
@@ -173,7 +172,7 @@ class Wcsph : public Fix {
       ax[i] += a[0];
       ay[i] += a[1];
       az[i] += a[2];
-    }
+    });
   }
 
   void save_state(ByteWriter& w) const override { w.put(c0_); }
@@ -185,11 +184,10 @@ class Wcsph : public Fix {
     const real rho0 = real(sim.rest_density());
     const real c2 = real(c0_ * c0_), b = real(sim.rest_density() * c0_ * c0_ / gamma_), gamma = real(gamma_);
     const bool tait = eos_ == "tait", clamp = !keep_negative_;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      real pi = tait ? b * (std::pow(rho[i] / rho0, gamma) - 1) : c2 * (rho[i] - rho0);
+    for_particles(n, [&](std::size_t i) {
+      const real pi = tait ? b * (std::pow(rho[i] / rho0, gamma) - 1) : c2 * (rho[i] - rho0);
       p[i] = clamp && pi < 0 ? 0 : pi;
-    }
+    });
   }
 
   // Beyond h / c0 a sound wave outruns the kernel in one step and grows; the run would go on
