@@ -13,6 +13,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/core/run_loop.hpp"
 #include "engine/distributed/comm.hpp"
+#include "engine/sph/pair_sums.hpp"
 #include "engine/sph/separate_coincident.hpp"
 
 namespace pbf {
@@ -125,6 +126,8 @@ void RunLoop::run(std::int64_t steps, double until) {
   check_start_state();
   prepare();
   // From here on the scene's constants stay as every fix's init left them (summed_density).
+  auto& P = sim_.particles_;
+  sim_.run_uniform_mass_ = uniform_mass(P.mass(), P.size(), P.distributed());
   struct Running {
     bool& flag;
     ~Running() { flag = false; }

@@ -332,11 +332,13 @@ void Simulation::refresh_density(bool with_volume) {
   if (with_volume) volume_.resize(density_.size());
   update_ghost_positions();
   const real *x = particles_.x(), *y = particles_.y(), *z = particles_.z();
-  // Within a run the boundaries' constants are those its start prepared (each boundary's
-  // init); between runs a script may have changed the particles' mass or h.
+  // Within a run the boundaries' constants, and whether the masses are one, are those its
+  // start found (each boundary's init, the run loop); between runs a script may have changed
+  // the particles' masses or h.
   if (!running_)
     for (DensityBoundary* b : boundaries_) b->prepare(*this);
-  const PairInput pairs{grid_, x, y, z, m, uniform_mass(m, n, particles_.distributed()), kernels_, n};
+  const real common_mass = running_ ? run_uniform_mass_ : uniform_mass(m, n, particles_.distributed());
+  const PairInput pairs{grid_, x, y, z, m, common_mass, kernels_, n};
   real* rho = density_.data();
   real* volume = with_volume ? volume_.data() : nullptr;
   for_blocks(n, [&](std::size_t begin, std::size_t end) {

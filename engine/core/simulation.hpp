@@ -212,7 +212,8 @@ class Simulation {
   };
   ListTimes bin_and_list();
   void refresh_density(bool with_volume);
-  bool running_ = false;  // inside Simulation::run (set by the run loop)
+  bool running_ = false;     // inside Simulation::run (set by the run loop)
+  real run_uniform_mass_ = 0;  // within a run: every particle's mass when all are equal, else 0
   std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0, ghost_positions_version_ = 0;
   std::vector<real> density_, volume_;
   std::uint64_t volume_version_ = 0;

@@ -57,14 +57,14 @@ class Box : public Fix, public DensityBoundary {
   void constraint(Simulation& sim, int) override {
     auto& P = sim.particles();
     const Domain& d = sim.domain();
-    real* x[3] = {P.x(), P.y(), P.z()};
-    real lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = real(d.lo[a] + contact_);
-      hi[a] = real(d.hi[a] - contact_);
-    }
+    real *x = P.x(), *y = P.y(), *z = P.z();
+    const real lo[3] = {real(d.lo[0] + contact_), real(d.lo[1] + contact_), real(d.lo[2] + contact_)};
+    const real hi[3] = {real(d.hi[0] - contact_), real(d.hi[1] - contact_), real(d.hi[2] - contact_)};
+    auto clamp = [](real v, real a, real b) { return v < a ? a : (v > b ? b : v); };
     for_particles(P.size(), [&](std::size_t i) {
-      for (int a = 0; a < 3; ++a) x[a][i] = x[a][i] < lo[a] ? lo[a] : (x[a][i] > hi[a] ? hi[a] : x[a][i]);
+      x[i] = clamp(x[i], lo[0], hi[0]);
+      y[i] = clamp(y[i], lo[1], hi[1]);
+      z[i] = clamp(z[i], lo[2], hi[2]);
     });
   }
 

@@ -102,7 +102,7 @@ class Cfl : public Fix {
     const double c = c_ > 0 ? c_ : sim.max_signal_speed();
     double v2 = 0, a2 = 0;
     const auto accel = P.find("acceleration");
-#pragma omp parallel for schedule(dynamic, kParticleBlock) reduction(max : v2, a2)
+#pragma omp parallel for schedule(dynamic, kStreamBlock) reduction(max : v2, a2)
     for (std::size_t i = 0; i < n; ++i) {
       v2 = std::max(v2, double(P.vx()[i]) * P.vx()[i] + double(P.vy()[i]) * P.vy()[i] + double(P.vz()[i]) * P.vz()[i]);
       if (accel) {

@@ -31,15 +31,16 @@ class Leapfrog : public Fix {
     auto& P = sim.particles();
     const std::size_t n = P.size();
     const real dt = real(sim.timestep()), half = started_ ? dt / 2 : 0;
-    real* x[3] = {P.x(), P.y(), P.z()};
-    real* v[3] = {P.vx(), P.vy(), P.vz()};
-    real* a[3] = {P.data(accel_, 0), P.data(accel_, 1), P.data(accel_, 2)};
+    real *x = P.x(), *y = P.y(), *z = P.z(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     for_particles(n, [&](std::size_t i) {
-      for (int c = 0; c < 3; ++c) {
-        v[c][i] += half * a[c][i];
-        x[c][i] += dt * v[c][i];
-        a[c][i] = 0;
-      }
+      vx[i] += half * ax[i];
+      vy[i] += half * ay[i];
+      vz[i] += half * az[i];
+      x[i] += dt * vx[i];
+      y[i] += dt * vy[i];
+      z[i] += dt * vz[i];
+      ax[i] = ay[i] = az[i] = 0;
     });
   }
 
@@ -47,10 +48,12 @@ class Leapfrog : public Fix {
     auto& P = sim.particles();
     const std::size_t n = P.size();
     const real dt = real(sim.timestep()), kick = started_ ? dt / 2 : dt;
-    real* v[3] = {P.vx(), P.vy(), P.vz()};
-    const real* a[3] = {P.data(accel_, 0), P.data(accel_, 1), P.data(accel_, 2)};
+    real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    const real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     for_particles(n, [&](std::size_t i) {
-      for (int c = 0; c < 3; ++c) v[c][i] += kick * a[c][i];
+      vx[i] += kick * ax[i];
+      vy[i] += kick * ay[i];
+      vz[i] += kick * az[i];
     });
     started_ = true;
   }

@@ -178,7 +178,7 @@ class PositionBasedFluid : public Fix {
     for_blocks(n, [&](std::size_t begin, std::size_t end) {
       constraint_sums(pairs, begin, end, inv_rho0, fluid_rho, grad_x, grad_y, grad_z, grad_sq);
       auto& compressed = compression.mine()[0];
-      real& most = most_[static_cast<std::size_t>(omp_get_thread_num())];
+      real most = 0;  // the block's, kept here: threads writing one cache line would slow each other
       for (std::size_t i = begin; i < end; ++i) {
         const real fluid = fluid_rho[i], squares = grad_sq[i];
         real rho = fluid;
@@ -208,6 +208,8 @@ class PositionBasedFluid : public Fix {
           wall_share_[i] = share;
         }
       }
+      real& thread_most = most_[static_cast<std::size_t>(omp_get_thread_num())];
+      thread_most = std::max(thread_most, most);
     });
     if (measure) measure_error(sim, compression.total(P.distributed())[0]);
 
@@ -258,14 +260,16 @@ class PositionBasedFluid : public Fix {
     std::vector<double>& farthest = farthest_;
     farthest.assign(static_cast<std::size_t>(omp_get_max_threads()), 0);
     for_blocks(n, [&](std::size_t begin, std::size_t end) {
-      double& most = farthest[static_cast<std::size_t>(omp_get_thread_num())];
+      double most = 0;  // the block's (see constraint)
       for (std::size_t i = begin; i < end; ++i) {
         vx[i] = (x[i] - px[i]) * inv_dt;
         vy[i] = (y[i] - py[i]) * inv_dt;
         vz[i] = (z[i] - pz[i]) * inv_dt;
         most = std::max(most, moved2(P, i));
       }
-    });
+      double& thread_most = farthest[static_cast<std::size_t>(omp_get_thread_num())];
+      thread_most = std::max(thread_most, most);
+    }, kStreamBlock);
     check_step_length(sim, *std::max_element(farthest.begin(), farthest.end()));
   }
 

@@ -111,7 +111,7 @@ void SolidFix::constraint(Simulation& sim, int) {
   const bool moves_momentum = integrator && integrator->integration() == Integration::positions;
   const real* m = P.mass();
   const real inv_dt = real(1 / sim.timestep());
-#pragma omp parallel for schedule(dynamic, kParticleBlock) reduction(min : lost)
+#pragma omp parallel for schedule(dynamic, kStreamBlock) reduction(min : lost)
   for (std::size_t i = 0; i < n; ++i) {
     real p[3] = {x[i], y[i], z[i]}, b[3];
     to_frame(now_, p, b);

@@ -74,9 +74,10 @@ void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t 
   cell_.resize(n);
   sorted_.resize(n + kListPadding);  // the padding (zeros) lets a vector load run past the last slot
   std::fill(sorted_.begin() + static_cast<std::ptrdiff_t>(n), sorted_.end(), 0u);
-  cell_start_.assign(ncells + 1, 0);
+  cell_start_.resize(ncells + 1);  // every entry is written below
   const int T = omp_get_max_threads();
   histogram_.resize(T);
+  cells_counted_.resize(T);
 
 #pragma omp parallel num_threads(T)
   {
@@ -88,22 +89,28 @@ void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t 
       cell_[i] = static_cast<std::uint32_t>(cell_of(x[i], y[i], z[i]));
       ++hist[cell_[i]];
     }
+    // Exclusive prefix sum over (cell, thread): thread t's particles of cell c follow those of
+    // threads before it, so the order within a cell is ascending index. In parallel, over a
+    // range of cells per thread: first each range's total, then the sums within the ranges.
+    const std::size_t first_cell = block_begin(ncells, t, T), end_cell = block_begin(ncells, t + 1, T);
 #pragma omp barrier
-#pragma omp single
-    {
-      // Exclusive prefix sum over (cell, thread): thread t's particles of cell c follow
-      // those of threads before it, so the order within a cell is ascending index.
-      std::uint32_t running = 0;
-      for (std::size_t c = 0; c < ncells; ++c) {
-        cell_start_[c] = running;
-        for (int u = 0; u < T; ++u) {
-          const std::uint32_t count = histogram_[u][c];
-          histogram_[u][c] = running;
-          running += count;
-        }
+    std::uint32_t counted = 0;
+    for (std::size_t c = first_cell; c < end_cell; ++c)
+      for (int u = 0; u < T; ++u) counted += histogram_[u][c];
+    cells_counted_[t] = counted;
+#pragma omp barrier
+    std::uint32_t running = 0;
+    for (int u = 0; u < t; ++u) running += cells_counted_[u];
+    for (std::size_t c = first_cell; c < end_cell; ++c) {
+      cell_start_[c] = running;
+      for (int u = 0; u < T; ++u) {
+        const std::uint32_t count = histogram_[u][c];
+        histogram_[u][c] = running;
+        running += count;
       }
-      cell_start_[ncells] = running;
     }
+    if (t == T - 1) cell_start_[ncells] = running;
+#pragma omp barrier
     for (std::size_t i = begin; i < end; ++i) {
       sorted_[hist[cell_[i]]++] = static_cast<std::uint32_t>(i);
     }

@@ -117,6 +117,7 @@ class NeighborGrid {
   std::vector<std::uint32_t> sorted_;       // particle indices, cell by cell, and kListPadding zeros
   std::vector<real> packed_[3];             // positions in sorted_ order, padded
   std::vector<std::vector<std::uint32_t>> histogram_;  // per thread, per cell
+  std::vector<std::uint32_t> cells_counted_;           // per thread: the particles in its range of cells
   std::vector<std::uint32_t> offset_;       // list of particle i: list_[offset_[i] .. offset_[i+1])
   std::vector<std::uint32_t> list_;         // and kListPadding zeros after the last
   // The one-pass build (build_lists): pairs per block of kBlock particles at the last build,
