@@ -267,7 +267,11 @@ int main(int argc, char** argv) {
 
   // Threads that wait without taking the cores they share: set before the OpenMP runtime
   // loads, by starting again (engine/core/threads.hpp); before MPI starts and the log opens.
-  pbf::restart_with_polite_waiting(argv);
+  // A run of one thread never waits for another: it needs no restart (the ranks of an MPI
+  // run learn their share of the node only once MPI has started).
+  if (pbf::comm::launched_by_mpi() ||
+      pbf::choose_threads(pbf::cores_of_this_process(1), requested_threads, std::getenv("OMP_NUM_THREADS")).threads > 1)
+    pbf::restart_with_polite_waiting(argv);
   // Under an MPI launcher: the ranks of a distributed run. Rank 0 alone prints and keeps the log.
   pbf::comm::start(argc, argv);
   const pbf::ThreadChoice threads = pbf::choose_threads(pbf::cores_of_this_process(pbf::comm::ranks_on_node()),
@@ -288,7 +292,8 @@ int main(int argc, char** argv) {
     else
       pbf::log_file::write(fmt::format(
           "command: {}\nstarted: {}\nversion: pbfengine {}\nthreads: {} ({})\nwaiting: {}\nvectors: {}\n",
-          command_line(argc, argv), iso8601_now(), PBF_VERSION, threads.threads, threads.why, pbf::waiting_policy(),
+          command_line(argc, argv), iso8601_now(), PBF_VERSION, threads.threads, threads.why,
+          pbf::waiting_policy(threads.threads),
           pbf::vectors_in_use()));
   }
   omp_set_num_threads(threads.threads);

@@ -170,7 +170,7 @@ TEST(LogFile, HoldsAHeaderThenWhatTheRunPrinted) {
   EXPECT_EQ(time[10], 'T');
   EXPECT_EQ(time[22], ':');
   const std::string header = command + time + "\nversion: pbfengine " + PBF_VERSION +
-                             "\nthreads: 1 (as --threads asks)\nwaiting: " + pbf::waiting_policy() +
+                             "\nthreads: 1 (as --threads asks)\nwaiting: " + pbf::waiting_policy(1) +
                              "\nvectors: " + pbf::vectors_in_use() + "\n";
   ASSERT_EQ(log.rfind(header, 0), 0u) << log;
   // Then exactly what the run printed: Lua's print, thermo, the timing table, warnings.

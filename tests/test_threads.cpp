@@ -136,15 +136,16 @@ TEST(Threads, TheCpuQuotaIsTheSmallestOnTheWayUpTheCgroupTree) {
 
 // pbfengine sets the short spin and starts itself again, once; the Lua script of the
 // restarted process sees the variables the OpenMP runtime read as it loaded. A user's choice
-// of a wait policy is left alone.
+// of a wait policy is left alone, and a run of one thread does not restart.
 TEST(Threads, ARunStartsAgainWithAShortSpinUnlessTheUserChoseAPolicy) {
   const TempDir dir("threads-restart");
   write_file(dir / "a.lua",
              "print(os.getenv('GOMP_SPINCOUNT'), os.getenv('KMP_BLOCKTIME'), os.getenv('PBF_WAITING'))\n");
   const std::string clean = "env -u GOMP_SPINCOUNT -u KMP_BLOCKTIME -u PBF_WAITING -u OMP_WAIT_POLICY ";
-  auto run = [&](const std::string& env) {
-    const std::string command =
-        "cd '" + dir.string() + "' && " + clean + env + " " + PBF_BINARY + " run a.lua --log log.txt > out.txt 2>&1";
+  // Two threads unless told: a run of one never waits for another, and does not restart.
+  auto run = [&](const std::string& env, const std::string& options = "--threads 2") {
+    const std::string command = "cd '" + dir.string() + "' && " + clean + env + " " + PBF_BINARY + " run a.lua " +
+                                options + " --log log.txt > out.txt 2>&1";
     EXPECT_EQ(std::system(command.c_str()), 0) << read_file(dir / "out.txt");
     return read_file(dir / "out.txt");
   };
@@ -159,13 +160,17 @@ TEST(Threads, ARunStartsAgainWithAShortSpinUnlessTheUserChoseAPolicy) {
     EXPECT_STREQ(std::getenv("GOMP_SPINCOUNT"), "1000");
     EXPECT_STREQ(std::getenv("KMP_BLOCKTIME"), "0");
   }
+  out = run("", "--threads 1");
+  EXPECT_NE(out.find("\nnil\tnil\tnil\n"), std::string::npos) << out;
+  EXPECT_NE(read_file(dir / "log.txt").find("waiting: one thread, which never waits for another\n"),
+            std::string::npos);
   out = run("OMP_WAIT_POLICY=passive");
   EXPECT_NE(out.find("\nnil\tnil\tnil\n"), std::string::npos) << out;
   EXPECT_NE(read_file(dir / "log.txt").find("waiting: as the environment says (OMP_WAIT_POLICY=passive)\n"),
             std::string::npos);
   // An OMP_NUM_THREADS that is no count: one warning, the default count, and the OpenMP
   // runtime of the restarted process does not complain about it again.
-  out = run("OMP_NUM_THREADS=0");
+  out = run("OMP_NUM_THREADS=0", "");
   EXPECT_NE(out.find("warning: OMP_NUM_THREADS='0' is not a thread count"), std::string::npos) << out;
   const auto complaint = out.find("libgomp: Invalid value");
   if (complaint != std::string::npos)

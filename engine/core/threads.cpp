@@ -202,7 +202,7 @@ void restart_with_polite_waiting(char** argv) {
   if (const char* given = std::getenv(kGivenThreads)) setenv("OMP_NUM_THREADS", given, 1);
 }
 
-std::string waiting_policy() {
+std::string waiting_policy(int threads) {
   const char* marker = std::getenv(kMarker);
   if (marker && std::string(marker) == "pbfengine")
     return fmt::format("spin briefly, then sleep (GOMP_SPINCOUNT={}, KMP_BLOCKTIME={}, set by pbfengine)", kSpinCount,
@@ -211,6 +211,7 @@ std::string waiting_policy() {
   for (const char* name : kPolicyVariables)
     if (const char* value = std::getenv(name)) set += fmt::format("{}{}={}", set.empty() ? "" : ", ", name, value);
   if (!set.empty()) return fmt::format("as the environment says ({})", set);
+  if (threads == 1 && !marker) return "one thread, which never waits for another";
   return fmt::format("the OpenMP runtime's default (threads may spin for milliseconds){}",
                      marker ? fmt::format(": {}", marker) : std::string());
 }

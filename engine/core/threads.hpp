@@ -63,7 +63,7 @@ int thread_limit();
 // Returns when no restart is needed, or when it failed (then the run goes on with the
 // runtime's default and waiting_policy() says so).
 void restart_with_polite_waiting(char** argv);
-// How the threads of this process wait, for the log.
-std::string waiting_policy();
+// How the `threads` threads of this process wait, for the log.
+std::string waiting_policy(int threads);
 
 }  // namespace pbf

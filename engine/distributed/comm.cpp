@@ -17,11 +17,6 @@ namespace {
 bool started = false;
 int my_rank = 0, world_size = 1;
 
-bool launched_by_mpi() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
-    if (std::getenv(name)) return true;
-  return false;
-}
 
 int count_of(std::size_t n) {
   if (n > static_cast<std::size_t>(INT32_MAX))
@@ -30,6 +25,12 @@ int count_of(std::size_t n) {
 }
 
 }  // namespace
+
+bool launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
 
 void start(int& argc, char**& argv) {
   if (started || !launched_by_mpi()) return;

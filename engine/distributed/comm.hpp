@@ -19,6 +19,8 @@ class ExactSum;
 
 namespace comm {
 
+// Whether an MPI launcher started this process (start() will start MPI).
+bool launched_by_mpi();
 // Starts MPI when launched by an MPI launcher; call once, first thing in main.
 void start(int& argc, char**& argv);
 // Ends MPI (after every rank's last collective call); a no-op when it never started.

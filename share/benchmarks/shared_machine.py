@@ -18,12 +18,14 @@ processes, started before the run and stopped after it):
 
 It prints a Markdown table with the medians and the ratios issue 29 sets bounds on:
 load1 default / load1 one thread (at most 1.2), load2 the same (at most 1.2), pair / serial
-(at most 1.1) and alone default / alone one thread (the speed-up). --out FILE also writes it
-there, with the date, the machine and the binary.
+(at most 1.1) and alone 1 thread / alone default (the speed-up). --baseline OLD measures a
+second binary in the same rounds (its cases right before the binary's), for a table of both.
+--out FILE also writes the table there, with the date, the machine and the binaries, and a
+bar chart of the ratios beside it (FILE with .png; matplotlib needed).
 
-    python3 share/benchmarks/shared_machine.py --binary build/pbfengine --repeats 5 \
-        --out docs/performance/shared.md
-    python3 share/benchmarks/shared_machine.py --binary OLD/pbfengine --env OMP_WAIT_POLICY=passive
+    python3 share/benchmarks/shared_machine.py --binary build/pbfengine --baseline OLD/pbfengine \
+        --repeats 7 --out docs/performance/shared.md      # about 8 minutes on 2 cores
+    python3 share/benchmarks/shared_machine.py --env OMP_WAIT_POLICY=passive --cases load1,pair
 
 --env NAME=VALUE (repeatable) sets a variable for the runs (and only for them), to compare
 wait policies; --cases picks a subset; --particles and --steps shrink the scene for a quick
@@ -131,30 +133,73 @@ RATIOS = [
 ]
 
 
-def table(medians, samples, repeats):
-    lines = ["| case | median wall (s) | runs (s) |", "|---|---|---|"]
-    for name, value in medians.items():
-        lines.append(f"| {name} | {value:.2f} | {' '.join(f'{s:.2f}' for s in samples[name])} |")
-    lines += ["", f"Ratios of the medians ({repeats} rounds):", "", "| ratio | value | bound (issue 29) |",
-              "|---|---|---|"]
-    for label, top, bottom, bound in RATIOS:
-        if top in medians and bottom in medians:
-            lines.append(f"| {label} | {medians[top] / medians[bottom]:.2f} | {'' if bound is None else bound} |")
-    return "\n".join(lines) + "\n"
+def ratios(medians):
+    """(label, value, bound) of each ratio whose cases were measured."""
+    return [(label, medians[top] / medians[bottom], bound) for label, top, bottom, bound in RATIOS
+            if top in medians and bottom in medians]
+
+
+def table(results, repeats):
+    """results: [(name, {case: [seconds]})], one per binary."""
+    medians = [(name, {case: statistics.median(v) for case, v in samples.items()}) for name, samples in results]
+    names = [name for name, _ in results]
+    lines = ["| case | " + " | ".join(f"{n}: median wall (s)" for n in names) + " | runs (s) |",
+             "|---|" + "---|" * len(names) + "---|"]
+    for case in results[0][1]:
+        runs = "; ".join(" ".join(f"{x:.2f}" for x in samples[case]) for _, samples in results)
+        lines.append(f"| {case} | " + " | ".join(f"{m[case]:.2f}" for _, m in medians) + f" | {runs} |")
+    lines += ["", f"Ratios of the medians ({repeats} rounds):", "",
+              "| ratio | " + " | ".join(names) + " | bound (issue 29) |", "|---|" + "---|" * len(names) + "---|"]
+    for k, (label, _, bound) in enumerate(ratios(medians[0][1])):
+        values = " | ".join(f"{ratios(m)[k][1]:.2f}" for _, m in medians)
+        lines.append(f"| {label} | {values} | {'' if bound is None else bound} |")
+    return "\n".join(lines) + "\n", medians
+
+
+def plot(medians, path):
+    """A bar chart of the bounded ratios, one bar per binary, the bounds as marks."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        progress("no matplotlib: no plot (on Debian: apt install python3-matplotlib, run with /usr/bin/python3)")
+        return
+    bounded = [r for r in ratios(medians[0][1]) if r[2] is not None]
+    labels = [label.replace(": ", ":\n") for label, _, _ in bounded]
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    width = 0.8 / len(medians)
+    for k, (name, m) in enumerate(medians):
+        values = [v for _, v, b in ratios(m) if b is not None]
+        ax.bar([x + k * width for x in range(len(values))], values, width, label=name)
+    for x, (_, _, bound) in enumerate(bounded):
+        ax.plot([x - width / 2, x + (len(medians) - 0.5) * width], [bound, bound], "k--", lw=1)
+    ax.set_xticks([x + (len(medians) - 1) * width / 2 for x in range(len(bounded))])
+    ax.set_xticklabels(labels, fontsize=8)
+    ax.set_ylabel("ratio of wall times (dashed: the bound)")
+    ax.set_title("The dam break on a 2-core machine it shares")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    progress(f"wrote {path}")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--binary", default=os.path.join(REPO, "build", "pbfengine"))
+    parser.add_argument("--baseline", help="a second pbfengine measured in the same rounds (an older build)")
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--particles", type=int, default=33750)
     parser.add_argument("--steps", type=int, default=75)
     parser.add_argument("--cases", default=",".join(CASES), help=f"comma-separated, of {', '.join(CASES)}")
     parser.add_argument("--env", action="append", default=[], metavar="NAME=VALUE")
-    parser.add_argument("--out", help="also write the table into this Markdown file")
+    parser.add_argument("--out", help="also write the table into this Markdown file, and its plot beside it")
     args = parser.parse_args()
-    if not os.access(args.binary, os.X_OK):
-        fail(f"no executable '{args.binary}' (build it with ./setup.sh, or give --binary)")
+    binaries = [b for b in (args.baseline, args.binary) if b]
+    for b in binaries:
+        if not os.access(b, os.X_OK):
+            fail(f"no executable '{b}' (build it with ./setup.sh, or give --binary)")
     if args.repeats < 1 or args.particles < 1 or args.steps < 1:
         fail("--repeats, --particles and --steps must be at least 1")
     cases = [c.strip() for c in args.cases.split(",") if c.strip()]
@@ -174,22 +219,25 @@ def main():
         subprocess.run([sys.executable, MAKE_SCENE, "--kind", "dambreak", "--particles", str(args.particles), "--dt",
                         str(DT), "--interval", f"{t_final:g}", "--t-final", f"{t_final:g}", "-o", scene],
                        check=True, stderr=subprocess.DEVNULL)
-        runs = Runs(os.path.abspath(args.binary), scene, folder, env)
-        samples = {}
+        runs = [Runs(os.path.abspath(b), scene, folder, env) for b in binaries]
+        samples = [{} for _ in binaries]
         for r in range(args.repeats):
             progress(f"round {r + 1} of {args.repeats}")
-            for name, seconds in one_round(runs, cases).items():
-                samples.setdefault(name, []).append(seconds)
-    medians = {name: statistics.median(values) for name, values in samples.items()}
+            for k, run in enumerate(runs):
+                for name, seconds in one_round(run, cases).items():
+                    samples[k].setdefault(name, []).append(seconds)
+    names = ["before", "after"] if args.baseline else ["pbfengine"]
+    text, medians = table(list(zip(names, samples)), args.repeats)
     cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")), "?")
+    which = (f"before: {args.baseline}; after: {args.binary}" if args.baseline else args.binary)
     head = (f"{datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC; {os.cpu_count()} hardware threads ({cpu}); "
-            f"{args.binary}; the dam break of {args.particles} particles, {args.steps} steps"
+            f"{which}; the dam break of {args.particles} particles, {args.steps} steps"
             + (f"; environment {' '.join(args.env)}" if args.env else "") + "\n\n")
-    text = head + table(medians, samples, args.repeats)
-    print(text)
+    print(head + text)
     if args.out:
         with open(args.out, "w") as f:
-            f.write(text)
+            f.write(head + text)
+        plot(medians, os.path.splitext(args.out)[0] + ".png")
 
 
 if __name__ == "__main__":
