@@ -47,6 +47,12 @@ TEST(Threads, TheDefaultIsOnePerUsableCoreAndSaysWhy) {
   c = choose_threads(cores(16, 16, 1.5), std::nullopt, nullptr);
   EXPECT_EQ(c.threads, 1);
   EXPECT_EQ(c.why, "one per core this process may use: a CPU quota of 1.5 cores (cgroup), on 16 hardware threads");
+  // A quota below one core: one thread, and a word on what it gets.
+  c = choose_threads(cores(16, 16, 0.5), std::nullopt, nullptr);
+  EXPECT_EQ(c.threads, 1);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0], "this process's CPU quota is 0.5 of a core (cgroup): its threads run at most that share "
+                           "of the time");
   c = choose_threads(cores(16, 16, 0, 4), std::nullopt, nullptr);
   EXPECT_EQ(c.threads, 4);
   EXPECT_EQ(c.why, "one per core this process may use: 4 ranks share this node's 16 hardware threads");

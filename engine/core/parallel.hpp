@@ -87,7 +87,8 @@ std::size_t first_particle(std::size_t n, Test&& test) {
 }
 
 // One exact accumulator per thread, kept between calls by the thread that owns it, so that a
-// step allocates nothing; total() merges them in thread order.
+// step allocates nothing; total() merges them in thread order. One ThreadSums<K> at a time
+// per thread that opens regions (they share the kept accumulators).
 template <std::size_t K>
 class ThreadSums {
  public:

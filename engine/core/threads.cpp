@@ -160,6 +160,10 @@ ThreadChoice choose_threads(const Cores& cores, std::optional<int> requested, co
                       text, thread_limit(), plural(usable, "thread"), c.why));
     }
   }
+  if (cores.quota > 0 && cores.quota < 1)
+    c.warnings.push_back(fmt::format("this process's CPU quota is {:g} of a core (cgroup): its threads run at most "
+                                     "that share of the time",
+                                     cores.quota));
   const int node = cores.ranks_on_node * c.threads;
   if (cores.ranks_on_node > 1 && node > cores.machine)
     c.warnings.push_back(fmt::format(
