@@ -1,5 +1,6 @@
 // pbfengine: the command line.
 //   pbfengine run FILE.lua [-v NAME=VALUE]... [--threads N] [--log FILE|none] [--log-level LEVEL]
+//                 [--vectors NAME] [--check-every-hook]
 //   pbfengine help [STYLE] [--markdown]
 //   pbfengine --version
 // Exit codes: 0 success; 1 an error in the script, a scene file, a parameter or the run
