@@ -316,7 +316,8 @@ const std::vector<real>& Simulation::summed_volume() {
 // The density, and the volume when asked, in one pass over the particles (a pair sum, the
 // walls' share, m / rho); the ghosts' come from their owners.
 void Simulation::refresh_density(bool with_volume) {
-  const bool density_current = density_version_ == positions_version_ && density_.size() == particles_.size_with_ghosts();
+  const bool density_current =
+      density_version_ == positions_version_ && density_.size() == particles_.size_with_ghosts();
   const bool volume_current = volume_version_ == density_version_ && volume_.size() == density_.size();
   if (density_current && (volume_current || !with_volume)) return;
   const std::size_t n = particles_.size();
@@ -369,7 +370,8 @@ void Simulation::swap_with_scratch(FieldId field, int component, std::size_t k) 
 
 void Simulation::check_inside_domain() const {
   const auto& P = particles_;
-  const std::size_t first = first_particle(P.size(), [&](std::size_t i) { return !domain_.contains(P.x()[i], P.y()[i], P.z()[i]); });
+  const std::size_t first =
+      first_particle(P.size(), [&](std::size_t i) { return !domain_.contains(P.x()[i], P.y()[i], P.z()[i]); });
   if (first < P.size()) throw Error(outside_domain(first));
 }
 
