@@ -236,6 +236,45 @@ int l_read_restart(lua_State* L) {
   return 1;
 }
 
+// pbf.scene(build): builds the scene with the function, or, when the command line gives
+// -v restart=FILE, reads it from that restart and does not call the function (LAMMPS's
+// read_restart in place of the scene's commands). So one script starts a run and continues
+// it: the pipeline that follows is declared either way.
+int l_scene(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.scene");
+  if (lua_type(L, 1) != LUA_TFUNCTION)
+    throw Error("pbf.scene takes the function that builds the scene: pbf.scene(function() ... end)");
+  if (S.sim.global_count() > 0)
+    throw Error("pbf.scene builds the scene or reads it from a restart: call it before creating any particle");
+  lua_getglobal(L, "var");
+  lua_getfield(L, -1, "restart");  // through var's __index: the variable counts as read
+  if (!lua_isnil(L, -1)) {
+    const std::string path = lua::path(L, -1, "pbf.scene: var.restart");
+    lua_pop(L, 2);
+    const RestartSummary r = read_restart(S.sim, path);
+    spdlog::info("continuing from {}: step {}, t = {} s, {} particles", path, r.step, r.time, r.particles);
+    push_restart_summary(L, r);
+    lua_pushstring(L, path.c_str());
+    lua_setfield(L, -2, "restart");
+    return 1;
+  }
+  lua_pop(L, 2);
+  lua_pushvalue(L, 1);
+  if (pcall(L, 0, 0) != LUA_OK) {
+    if (S.interrupted) throw *S.interrupted;
+    throw Error(pop_error(L), true);  // the message names the line inside the function
+  }
+  lua_createtable(L, 0, 3);
+  lua_pushinteger(L, static_cast<lua_Integer>(S.sim.step()));
+  lua_setfield(L, -2, "step");
+  lua_pushnumber(L, S.sim.time());
+  lua_setfield(L, -2, "time");
+  lua_pushinteger(L, static_cast<lua_Integer>(S.sim.global_count()));
+  lua_setfield(L, -2, "particles");
+  return 1;
+}
+
 }  // namespace
 
 std::vector<luaL_Reg> scene_functions() {
@@ -247,7 +286,8 @@ std::vector<luaL_Reg> scene_functions() {
           {"read_scene", guarded<l_read_scene>},
           {"read_particles", guarded<l_read_particles>},
           {"write_restart", guarded<l_write_restart>},
-          {"read_restart", guarded<l_read_restart>}};
+          {"read_restart", guarded<l_read_restart>},
+          {"scene", guarded<l_scene>}};
 }
 
 }  // namespace pbf::lua

@@ -19,7 +19,6 @@
 #include <omp.h>
 #include <spdlog/pattern_formatter.h>
 #include <spdlog/sinks/base_sink.h>
-#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
@@ -61,9 +60,23 @@ class LogFileSink : public spdlog::sinks::base_sink<std::mutex> {
   void flush_() override {}  // log_file::write flushes every line
 };
 
+// Info lines on stdout, warnings and errors on stderr (where a user who sends the output to a
+// file still sees them). spdlog flushes every line, so a terminal shows them in order.
+class ConsoleSink : public spdlog::sinks::base_sink<std::mutex> {
+ protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override {
+    spdlog::memory_buf_t line;
+    formatter_->format(msg, line);
+    std::FILE* stream = msg.level >= spdlog::level::warn ? stderr : stdout;
+    if (stream == stderr) std::fflush(stdout);  // what came before it comes first
+    std::fwrite(line.data(), 1, line.size(), stream);
+    std::fflush(stream);
+  }
+  void flush_() override { std::fflush(stdout); }
+};
+
 void setup_logging(const std::string& level) {
-  std::vector<spdlog::sink_ptr> sinks = {std::make_shared<spdlog::sinks::stdout_sink_mt>(),
-                                         std::make_shared<LogFileSink>()};
+  std::vector<spdlog::sink_ptr> sinks = {std::make_shared<ConsoleSink>(), std::make_shared<LogFileSink>()};
   auto logger = std::make_shared<spdlog::logger>("pbfengine", sinks.begin(), sinks.end());
   auto formatter = std::make_unique<spdlog::pattern_formatter>();
   formatter->add_flag<LevelPrefix>('*').set_pattern("%*%v");
@@ -111,10 +124,10 @@ std::string iso8601_now() {
 
 // The command line as a shell would take it back: words with other than plain characters
 // in single quotes.
-std::string command_line(int argc, char** argv) {
+std::string command_line(const std::vector<std::string>& words) {
   std::string line;
-  for (int i = 0; i < argc; ++i) {
-    const std::string word = argv[i];
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string& word = words[i];
     const bool plain = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                                                "0123456789_-+=/.,:@%") == std::string::npos;
     std::string quoted = "'";
@@ -145,20 +158,58 @@ int fail(const std::string& message, int code) {
   pbf::comm::abort(code);
 }
 
+// How to continue from RESTART, appended to the message of a run that stopped or failed: the
+// same command line with -v restart=PATH when the script reads var.restart (pbf.scene does),
+// else the function that reads it.
+std::string continuation(const std::string& restart, const pbf::Script& script, std::vector<std::string> words) {
+  if (!script.reads_variable("restart"))
+    return fmt::format("; continue from it with pbf.read_restart('{}') in place of the scene, or pbf.scene "
+                       "(docs/user-guide.md#continuing-a-run-exactly)",
+                       restart);
+  // The command line without its own -v restart (-v restart=P, -vrestart=P, --var restart=P, --var=restart=P).
+  std::vector<std::string> kept;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string& w = words[i];
+    const bool option = w == "-v" || w == "--var";
+    if (option && i + 1 < words.size() && words[i + 1].rfind("restart=", 0) == 0) {
+      ++i;
+      continue;
+    }
+    if (w.rfind("-vrestart=", 0) == 0 || w.rfind("--var=restart=", 0) == 0) continue;
+    kept.push_back(w);
+  }
+  kept.push_back("-v");
+  kept.push_back("restart=" + restart);
+  return fmt::format("; continue with: {} (docs/user-guide.md#continuing-a-run-exactly)", command_line(kept));
+}
+
+// The end of a script that ran (or was stopped): what it wrote, in one list.
+void list_outputs(const pbf::Simulation& sim, const std::string& log_path) {
+  std::string list = sim.outputs().summary();
+  if (log_path != "none") list += fmt::format("  log: {}\n", log_path);
+  if (!list.empty()) spdlog::info("Wrote:\n{}", list.substr(0, list.size() - 1));
+}
+
 int run_script(const std::string& file, const std::vector<std::pair<std::string, std::string>>& variables,
-               bool check_every_hook) {
+               bool check_every_hook, const std::vector<std::string>& words, const std::string& log_path) {
+  std::unique_ptr<pbf::Simulation> sim;
+  std::unique_ptr<pbf::Script> script;
   try {
-    pbf::Simulation sim;
-    sim.set_check_every_hook(check_every_hook);
-    pbf::Script script(sim);
-    script.set_variables(variables);
-    script.run_file(file);
-    for (const auto& name : script.unread_variables())
-      spdlog::warn("variable '{}' given with -v was never read by {}", name, file);
+    sim = std::make_unique<pbf::Simulation>();
+    sim->set_check_every_hook(check_every_hook);
+    script = std::make_unique<pbf::Script>(*sim);
+    script->set_variables(variables);
+    script->run_file(file);
+    for (const auto& warning : script->unread_variable_warnings()) spdlog::warn("{}", warning);
+    list_outputs(*sim, log_path);
   } catch (const pbf::Interrupted& e) {
-    return fail(e.what(), 130);  // the shell's code for a process ended by SIGINT
+    list_outputs(*sim, log_path);
+    return fail(e.what() + continuation(e.restart(), *script, words), 130);  // the shell's code for SIGINT
   } catch (const std::exception& e) {
-    return fail(e.what(), 1);
+    // A failed step names the newest restart, which is whole.
+    const std::string restart = sim ? sim->last_restart().path : "";
+    const bool names_it = script && !restart.empty() && std::string(e.what()).find("'" + restart + "'") != std::string::npos;
+    return fail(e.what() + (names_it ? continuation(restart, *script, words) : ""), 1);
   }
   return 0;
 }
@@ -293,7 +344,7 @@ int main(int argc, char** argv) {
     else
       pbf::log_file::write(fmt::format(
           "command: {}\nstarted: {}\nversion: pbfengine {}\nthreads: {} ({})\nwaiting: {}\nvectors: {}\n",
-          command_line(argc, argv), iso8601_now(), PBF_VERSION, threads.threads, threads.why,
+          command_line(std::vector<std::string>(argv, argv + argc)), iso8601_now(), PBF_VERSION, threads.threads, threads.why,
           pbf::waiting_policy(threads.threads),
           pbf::vectors_in_use()));
   }
@@ -305,7 +356,8 @@ int main(int argc, char** argv) {
   else
     spdlog::info("pbfengine {} on {} OpenMP thread{} ({})", PBF_VERSION, threads.threads, s, threads.why);
   for (const std::string& warning : threads.warnings) spdlog::warn("{}", warning);
-  const int code = run_script(file, variables, check_every_hook);
+  const int code = run_script(file, variables, check_every_hook, std::vector<std::string>(argv, argv + argc),
+                              log_path);
   pbf::comm::stop();
   if (!pbf::log_file::close())
     std::fprintf(stderr, "warning: writing the log file '%s' failed; it is incomplete\n", log_path.c_str());

@@ -179,6 +179,7 @@ int l_every(lua_State* L) {
 template <class F>
 void guarded_run(State& S, F&& run) {
   if (S.interrupted) throw *S.interrupted;
+  lua::check_variables_at_first_run(S);
   struct Running {
     bool& flag;
     ~Running() { flag = false; }
@@ -283,29 +284,9 @@ int print_line(lua_State* L, bool every_rank) {
 int l_print(lua_State* L) { return print_line(L, false); }
 int l_print_all(lua_State* L) { return print_line(L, true); }
 
-// var: reads go through __index so the engine can warn about variables never read.
-int l_var_index(lua_State* L) {
-  State& S = state(L);
-  if (lua_type(L, 2) == LUA_TSTRING) {
-    auto it = S.variable_read.find(lua_tostring(L, 2));
-    if (it != S.variable_read.end()) it->second = true;
-  }
-  lua_pushvalue(L, 2);
-  lua_rawget(L, lua_upvalueindex(2));
-  return 1;
-}
-
-int l_var_pairs(lua_State* L) {
-  for (auto& entry : state(L).variable_read) entry.second = true;
-  lua_getglobal(L, "next");
-  lua_pushvalue(L, lua_upvalueindex(2));
-  lua_pushnil(L);
-  return 3;
-}
-
 }  // namespace
 
-Script::Script(Simulation& sim) : state_(new State{sim, nullptr, false, {}, std::nullopt}) {
+Script::Script(Simulation& sim) : state_(new State(sim)) {
   lua_State* L = luaL_newstate();
   if (!L) throw Error("cannot create a Lua state (out of memory)");
   state_->L = L;
@@ -353,34 +334,12 @@ Script::~Script() {
 }
 
 void Script::set_variables(const std::vector<std::pair<std::string, std::string>>& variables) {
-  lua_State* L = state_->L;
-  state_->variable_read.clear();
-  lua_newtable(L);  // the values
-  for (const auto& [name, text] : variables) {
-    if (lua_stringtonumber(L, text.c_str()) == 0) lua_pushstring(L, text.c_str());  // integers stay integers
-    lua_setfield(L, -2, name.c_str());
-    state_->variable_read[name] = false;
-  }
-  const int values = lua_gettop(L);
-  lua_newtable(L);                  // var: an empty proxy
-  lua_createtable(L, 0, 3);         // its metatable
-  lua_pushlightuserdata(L, state_.get());
-  lua_pushvalue(L, values);
-  lua_pushcclosure(L, l_var_index, 2);
-  lua_setfield(L, -2, "__index");
-  lua_pushlightuserdata(L, state_.get());
-  lua_pushvalue(L, values);
-  lua_pushcclosure(L, l_var_pairs, 2);
-  lua_setfield(L, -2, "__pairs");
-  lua_pushvalue(L, values);
-  lua_setfield(L, -2, "__newindex");
-  lua_setmetatable(L, -2);
-  lua_setglobal(L, "var");
-  lua_pop(L, 1);
+  lua::install_variables(state_->L, *state_, variables);
 }
 
 void Script::run_file(const std::string& path) {
   lua_State* L = state_->L;
+  state_->script_path = path;
   if (!std::filesystem::is_regular_file(path)) throw Error(fmt::format("{}: cannot open the script", path), true);
   // Lua shortens long chunk names in its messages; find that short form to put the path back.
   const std::string chunk = "@" + path;
@@ -419,11 +378,10 @@ void Script::run_file(const std::string& path) {
   if (state_->interrupted) throw *state_->interrupted;  // caught by a pcall in the script
 }
 
-std::vector<std::string> Script::unread_variables() const {
-  std::vector<std::string> unread;
-  for (const auto& [name, read] : state_->variable_read)
-    if (!read) unread.push_back(name);
-  return unread;
+std::vector<std::string> Script::unread_variable_warnings() {
+  return lua::report_unread_variables(*state_, "was never read", "", false);
 }
+
+bool Script::reads_variable(const std::string& name) const { return state_->variables_looked_up.count(name) > 0; }
 
 }  // namespace pbf

@@ -22,8 +22,11 @@ class Script {
   void set_variables(const std::vector<std::pair<std::string, std::string>>& variables);
   // Runs the file; throws pbf::Error with the one-line "FILE:LINE: message".
   void run_file(const std::string& path);
-  // Variables given with -v that the script never read.
-  std::vector<std::string> unread_variables() const;
+  // A warning for each variable given with -v that the script never read (and that the
+  // first run has not already warned about).
+  std::vector<std::string> unread_variable_warnings();
+  // Whether the script read var.NAME (given with -v or not).
+  bool reads_variable(const std::string& name) const;
 
   struct State;
 

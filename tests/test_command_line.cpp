@@ -14,6 +14,7 @@
 
 using pbf::test::read_file;
 using pbf::test::run_engine;
+using pbf::test::run_in;
 using pbf::test::TempDir;
 using pbf::test::write_file;
 
@@ -28,18 +29,6 @@ const std::string kScene =
     "pbf.fix('pbf', 'pbf', {})\n"
     "pbf.compute('ke', 'kinetic_energy')\n"
     "pbf.thermo{every = 5, columns = {'step', 'time', 'ke'}}\n";
-
-// A run of `pbfengine ARGS` in DIR, its stdout and stderr kept apart (in DIR/stdout and
-// DIR/stderr). ARGS are given as they are, so a test chooses the log itself.
-struct Run {
-  int code;
-  std::string out, err;
-};
-Run run_in(const std::filesystem::path& dir, const std::string& args, const std::string& env = "") {
-  const std::string command = fmt::format("cd '{}' && {} {} {} > stdout 2> stderr", dir.string(), env, PBF_BINARY, args);
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stdout"), read_file(dir / "stderr")};
-}
 
 std::size_t lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 
@@ -85,7 +74,7 @@ TEST(CommandLine, ThreadCountsFromTheEnvironmentThatAreNoCountAreWarnedAndTheDef
   for (const std::string given : {"100000", "0", "many"}) {
     auto r = run_in(dir, "run a.lua --log none", "OMP_NUM_THREADS=" + given);
     EXPECT_EQ(r.code, 0) << r.out << r.err;
-    EXPECT_NE(r.out.find("warning: OMP_NUM_THREADS='" + given + "' is not a thread count from 1 to " +
+    EXPECT_NE(r.err.find("warning: OMP_NUM_THREADS='" + given + "' is not a thread count from 1 to " +
                          std::to_string(4 * kMachine) + ": ignored; the run uses "),
               std::string::npos)
         << r.out;
@@ -159,7 +148,9 @@ TEST(LogFile, HoldsAHeaderThenWhatTheRunPrinted) {
   write_file(dir / "a.lua", kScene + "print('from Lua', 42)\npbf.run(10)\n");
   auto r = run_in(dir, "run a.lua -v unused=1 --threads 1");
   ASSERT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_EQ(r.err, "");
+  // Warnings go to stderr; 'unused' is no typo of a variable the script read, so it is
+  // reported at the end (not at the first run).
+  EXPECT_EQ(r.err, "warning: variable 'unused' given with -v was never read by a.lua\n");
   const std::string log = read_file(dir / "log.pbfengine");
   // The header: the command line, the start time, the version, the threads and why, how
   // they wait, and the vectors.
@@ -173,15 +164,19 @@ TEST(LogFile, HoldsAHeaderThenWhatTheRunPrinted) {
                              "\nthreads: 1 (as --threads asks)\nwaiting: " + pbf::waiting_policy(1) +
                              "\nvectors: " + pbf::vectors_in_use() + "\n";
   ASSERT_EQ(log.rfind(header, 0), 0u) << log;
-  // Then exactly what the run printed: Lua's print, thermo, the timing table, warnings.
-  EXPECT_EQ(log.substr(header.size()), r.out);
+  // Then exactly what the run printed, on both streams in the order printed: Lua's print,
+  // thermo, the timing table, the warning, the list of what it wrote.
+  const std::string printed = log.substr(header.size());
+  const std::size_t warning = printed.find(r.err);
+  ASSERT_NE(warning, std::string::npos) << printed;
+  EXPECT_EQ(printed.substr(0, warning) + printed.substr(warning + r.err.size()), r.out);
+  EXPECT_NE(r.out.find("Wrote:\n  log: log.pbfengine\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("from Lua\t42\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("          step          time            ke\n             0             0             0\n"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\n            10          0.02"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Timing: 10 steps"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("warning: variable 'unused' given with -v was never read"), std::string::npos) << r.out;
 
   // Each run overwrites the log.
   write_file(dir / "b.lua", "print('second')\n");
@@ -254,7 +249,10 @@ TEST(LogFile, CtrlCEndsTheLog) {
       dir.string(), PBF_BINARY);
   ASSERT_EQ(std::system(command.c_str()), 0);
   EXPECT_EQ(read_file(dir / "code"), "130\n");
-  const std::string err = read_file(dir / "stderr"), log = read_file(dir / "log.pbfengine");
+  // stderr: the warning that the run will take long, then the message, which ends the log.
+  const std::string stderr_text = read_file(dir / "stderr"), log = read_file(dir / "log.pbfengine");
+  ASSERT_EQ(stderr_text.rfind("warning: run(100000000): ", 0), 0u) << stderr_text;
+  const std::string err = stderr_text.substr(stderr_text.find('\n') + 1);
   EXPECT_EQ(err.rfind("interrupted (Ctrl-C) after step ", 0), 0u) << err;
   EXPECT_EQ(log.substr(log.size() - std::min(log.size(), err.size())), err) << log;
 }

@@ -113,6 +113,19 @@ inline std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
+// A run of `pbfengine ARGS` in DIR, its stdout and stderr kept apart (in DIR/stdout and
+// DIR/stderr). ARGS are given as they are, so a test chooses the log itself.
+struct SplitRun {
+  int code;
+  std::string out, err;
+};
+inline SplitRun run_in(const std::filesystem::path& dir, const std::string& args, const std::string& env = "") {
+  const std::string command =
+      "cd '" + dir.string() + "' && " + env + " " + PBF_BINARY + " " + args + " > stdout 2> stderr";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "stdout"), read_file(dir / "stderr")};
+}
+
 // What the engine logs while it lives (added to the default logger's sinks).
 class LogCapture {
  public:

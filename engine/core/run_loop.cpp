@@ -149,12 +149,11 @@ void RunLoop::run(std::int64_t steps, double until) {
                                 "{:.3g} more steps",
                                 sim_.step_, sim_.dt_, sim_.time(), until, (until - sim_.time()) / sim_.dt_));
     } catch (const Error& e) {
-      // A failed step leaves the newest restart valid: say where to continue from.
+      // A failed step leaves the newest restart valid: say where to continue from (the
+      // command line adds how).
       const RestartNote& note = sim_.last_restart();
       if (note.path.empty()) throw;
-      throw Error(fmt::format("{}; the last restart is '{}' (step {}): continue from it with pbf.read_restart",
-                              e.what(), note.path, note.step),
-                  e.located());
+      throw Error(fmt::format("{}; the last restart is '{}' (step {})", e.what(), note.path, note.step), e.located());
     }
     const InterruptWatch::Requests signals = InterruptWatch::requested();
     if (signals.stop) stop_interrupted();

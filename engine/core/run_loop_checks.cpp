@@ -86,9 +86,8 @@ std::string RunLoop::write_restart_now(const char* prefix) {
 void RunLoop::stop_interrupted() {
   for (const auto& f : sim_.fixes_) f->finish(sim_);
   const std::string path = write_restart_now("interrupted");
-  throw Interrupted(fmt::format("interrupted (Ctrl-C) after step {} (t = {} s): wrote restart '{}'; continue "
-                                "with pbf.read_restart('{}')",
-                                sim_.step_, sim_.time(), path, path),
+  throw Interrupted(fmt::format("interrupted (Ctrl-C) after step {} (t = {} s): wrote restart '{}'", sim_.step_,
+                                sim_.time(), path),
                     path);
 }
 

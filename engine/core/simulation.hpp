@@ -17,6 +17,7 @@
 #include "engine/core/particles.hpp"
 #include "engine/core/thermo.hpp"
 #include "engine/core/timing.hpp"
+#include "engine/output/output_ledger.hpp"
 #include "engine/distributed/decomposition.hpp"
 
 namespace pbf {
@@ -104,6 +105,9 @@ class Simulation {
   // changes as the run goes (fix cfl), the number of steps is not known in advance.
   void run_until(double time);
   const TimingTable& last_timing() const { return timing_; }
+  // The files the runs have written (the command line lists them at the end).
+  OutputLedger& outputs() { return outputs_; }
+  const OutputLedger& outputs() const { return outputs_; }
   // What the run now starting plans (set before any fix's init): about how many steps, and
   // the time it ends at (estimated with the current time step when the run is by steps).
   struct RunPlan {
@@ -198,6 +202,7 @@ class Simulation {
   std::vector<std::unique_ptr<Compute>> computes_;
   Thermo thermo_;
   TimingTable timing_;
+  OutputLedger outputs_;
 
   NeighborGrid grid_, point_grid_;
   std::uint64_t point_grid_version_ = 0, ghosts_version_ = 0;

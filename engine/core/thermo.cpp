@@ -106,6 +106,7 @@ void Thermo::start_run(Simulation& sim) {
   std::string header;
   for (const auto& c : columns_) header += fmt::format("{:>{}}", c, width(c));
   spdlog::info("{}", header);
+  if (csv_.is_open()) sim.outputs().wrote("thermo CSV", csv_path_);
   if (sim.step() % every_ == 0) output(sim);
 }
 

@@ -71,7 +71,10 @@ class DumpMovie : public Fix {
 
   void init(Simulation& sim) override {
     images_.init(sim);
-    if (!pipe_ && comm::root()) open();
+    if (!pipe_ && comm::root()) {
+      open();
+      sim.outputs().wrote(fmt::format("movie of fix '{}' (dump/movie)", id()), path_);
+    }
     schedule_.start(sim, fmt::format("fix '{}' ({})", id(), style()));
     end_of_step(sim);
   }

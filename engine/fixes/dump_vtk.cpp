@@ -146,6 +146,7 @@ class DumpVtk : public Dump {
     for (const auto& fr : frames_)
       for (std::size_t k = 0; k < fr.files.size(); ++k) datasets.push_back({fr.time, static_cast<int>(k), fr.files[k]});
     write_pvd(collection_, datasets);
+    sim.outputs().wrote(fmt::format("ParaView collection of fix '{}' (dump/vtk)", id()), collection_);
   }
 
   // One process: every particle, in id order.

@@ -40,11 +40,13 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/distributed/comm.hpp"
 #include "engine/registry/builtin_styles.hpp"
+#include "engine/sph/compression_watch.hpp"
 #include "engine/sph/mass.hpp"
 #include "engine/sph/pair_sums.hpp"
 #include "engine/sph/point_query.hpp"
@@ -271,6 +273,10 @@ class PositionBasedFluid : public Fix {
       thread_most = std::max(thread_most, most);
     }, kStreamBlock);
     check_step_length(sim, *std::max_element(farthest.begin(), farthest.end()));
+    if (compression_watch_.due(sim.solver_report().error))
+      spdlog::warn("{}", pbf_compression_warning(fmt::format("fix '{}' ({})", id(), style()), sim.solver_report().error,
+                                                 sim.step() + 1, sim.timestep(), sim.kernel_radius(),
+                                                 constraint_iterations()));
   }
 
  private:
@@ -352,6 +358,7 @@ class PositionBasedFluid : public Fix {
   int iterations_;
   double target_, target_max_;
   int min_iterations_, max_iterations_;
+  CompressionWatch compression_watch_;
   bool reached_ = false;
   double epsilon_, k_;
   int n_;

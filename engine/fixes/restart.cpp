@@ -33,6 +33,8 @@ class PeriodicRestart : public Fix {
   void init(Simulation& sim) override {
     path_.create_directory();
     schedule_.start(sim);
+    if (!checked_ && written_.empty() && comm::root()) warn_about_later_restarts(sim);
+    checked_ = true;
   }
 
   void end_of_step(Simulation& sim) override {
@@ -70,6 +72,34 @@ class PeriodicRestart : public Fix {
   }
 
  private:
+  // Restarts of a later step where this run writes its own: most often those of a run this
+  // one was meant to continue. Starting again writes over that run's frames: said loudly.
+  void warn_about_later_restarts(const Simulation& sim) const {
+    const std::string& pattern = path_.pattern();
+    const std::filesystem::path folder = std::filesystem::path(pattern).parent_path();
+    const std::string name = std::filesystem::path(pattern).filename().string();
+    const std::size_t star = name.find('*');
+    if (star == std::string::npos) return;  // the '*' is in the folder's name
+    const std::string prefix = name.substr(0, star), suffix = name.substr(star + 1);
+    std::int64_t newest = -1;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(folder.empty() ? "." : folder, ec)) {
+      const std::string file = entry.path().filename().string();
+      if (file.size() <= prefix.size() + suffix.size() || file.rfind(prefix, 0) != 0 ||
+          file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0)
+        continue;
+      const std::string digits = file.substr(prefix.size(), file.size() - prefix.size() - suffix.size());
+      if (digits.size() > 18 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+      newest = std::max<std::int64_t>(newest, std::stoll(digits));
+    }
+    if (newest <= sim.step()) return;
+    const std::string file = path_.with(std::to_string(newest));
+    spdlog::warn("fix '{}' (restart): '{}' is the restart of a run that reached step {}; this run starts at step {} "
+                 "and writes over that run's outputs (to continue it instead, run the script with -v restart={} "
+                 "and build the scene with pbf.scene)",
+                 id(), file, newest, sim.step(), file);
+  }
+
   void write(Simulation& sim) {
     const std::string path = path_.with(std::to_string(sim.step()));
     written_.emplace_back(sim.step(), path);
@@ -77,7 +107,10 @@ class PeriodicRestart : public Fix {
     // Only now that the new file is complete, the oldest go.
     while (written_.size() > static_cast<std::size_t>(keep_)) {
       std::error_code ec;
-      if (written_.front().second != path && comm::root()) std::filesystem::remove(written_.front().second, ec);
+      if (written_.front().second != path && comm::root()) {
+        std::filesystem::remove(written_.front().second, ec);
+        sim.outputs().removed("restarts");
+      }
       written_.erase(written_.begin());
     }
   }
@@ -86,6 +119,7 @@ class PeriodicRestart : public Fix {
   std::int64_t keep_;
   OutputSchedule schedule_;
   std::vector<std::pair<std::int64_t, std::string>> written_;  // (step, path), oldest first
+  bool checked_ = false;                                        // for an earlier run's restarts
 };
 
 }  // namespace

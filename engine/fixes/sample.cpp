@@ -59,6 +59,7 @@ class Sample : public Fix {
   void init(Simulation& sim) override {
     const std::string header = header_line(sim);
     if (!opened_) open(header);
+    sim.outputs().wrote(fmt::format("samples of fix '{}' (sample)", id()), path_);
     if (header != header_)
       throw Error(fmt::format("the computes' values changed since '{}' was started ({} now, {} then): sample "
                               "them into a new file",

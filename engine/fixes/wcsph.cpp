@@ -23,6 +23,7 @@
 // the speeds, or a start too compressed).
 #include <cmath>
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
@@ -30,6 +31,7 @@
 #include "engine/io/bytes.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/distributed/comm.hpp"
+#include "engine/sph/compression_watch.hpp"
 #include "engine/sph/mass.hpp"
 
 namespace pbf {
@@ -146,6 +148,7 @@ class Wcsph : public Fix {
       for_particles(n, [&](std::size_t i) { rho[i] += dt * drho_[i]; });
     }
     check_density(sim, rho);
+    if (sim.step() % kWatchEvery == 0) watch_compression(sim, rho);
 
     pressure_from_density(sim, rho, p);
     sim.update_ghosts({rho, p});  // the force reads them at neighbours
@@ -179,6 +182,24 @@ class Wcsph : public Fix {
   void restore_state(ByteReader& r) override { c0_ = r.get<double>(); }
 
  private:
+  // The mean compression, every kWatchEvery steps (a pass and, on several ranks, a reduction).
+  static constexpr std::int64_t kWatchEvery = 10;
+  void watch_compression(const Simulation& sim, const real* rho) {
+    const auto& P = sim.particles();
+    const double inv_rho0 = 1 / sim.rest_density();
+    const double compressed = deterministic_sum(
+        P.size(), [&](std::size_t i) { return std::max(0.0, double(rho[i]) * inv_rho0 - 1); }, P.distributed());
+    const double mean = sim.global_count() ? compressed / double(sim.global_count()) : 0;
+    if (!compression_watch_.due(mean, kWatchEvery)) return;
+    double fastest = 0;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      fastest = std::max(fastest, std::sqrt(double(P.vx()[i]) * P.vx()[i] + double(P.vy()[i]) * P.vy()[i] +
+                                            double(P.vz()[i]) * P.vz()[i]));
+    if (P.distributed()) fastest = comm::max(fastest);
+    spdlog::warn("{}", wcsph_compression_warning(fmt::format("fix '{}' ({})", id(), style()), mean, sim.step() + 1,
+                                                 c0_, fastest, sim.kernel_radius()));
+  }
+
   void pressure_from_density(const Simulation& sim, const real* rho, real* p) const {
     const std::size_t n = sim.particles().size();
     const real rho0 = real(sim.rest_density());
@@ -229,6 +250,7 @@ class Wcsph : public Fix {
   double max_error_;
   FieldId rho_ = 0, pressure_ = 0, accel_ = 0;
   std::vector<real> drho_;
+  CompressionWatch compression_watch_;
 };
 
 }  // namespace

@@ -124,6 +124,7 @@ bool write_all(int fd, const unsigned char* bytes, std::size_t size) {
 RestartSummary write_restart(Simulation& sim, const std::string& path, std::uint32_t real_bytes) {
   if (real_bytes != 4 && real_bytes != 8)
     throw Error(fmt::format("write_restart: a real has 4 or 8 bytes, not {}", real_bytes));
+  sim.outputs().wrote("restarts", path);
   if (sim.particles().distributed()) return write_restart_distributed(sim, path, real_bytes);
   const double start = omp_get_wtime();
   const std::vector<unsigned char> data = payload(sim, real_bytes);

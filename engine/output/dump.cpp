@@ -36,7 +36,10 @@ void Dump::init(Simulation& sim) {
 
 void Dump::end_of_step(Simulation& sim) {
   if (!schedule_.due(sim)) return;
-  write_frame(sim, frame_path(schedule_.count()), schedule_.count());
+  const std::string path = frame_path(schedule_.count());
+  sim.outputs().wrote(fmt::format("{} of fix '{}' ({})", style() == "dump/image" ? "pictures" : "frames", id(), style()),
+                      path);
+  write_frame(sim, path, schedule_.count());
   schedule_.done(sim);
 }
 

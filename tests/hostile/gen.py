@@ -1916,6 +1916,55 @@ def gen_cli(g):
     ]
     for name, cmd, outcome, expect, setup in cases:
         g.case(name, cmd, outcome, expect, setup)
+    gen_cli_first_scenario(g)
+
+
+def gen_cli_first_scenario(g):
+    """A newcomer's mistakes (issue 30), each caught where it is made: at the first run's start
+    or at the line that makes it, not after the run."""
+    d = "{dir}"
+    g.file("first.lua", "\n".join([
+        "-- first.lua: a column that reads var.t_end and continues from -v restart=FILE (pbf.scene).",
+        "pbf.scene(function()", "  pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}", "  pbf.kernel_radius(0.02)",
+        "  pbf.timestep(0.001)", "  pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}",
+        "end)", 'pbf.fix("gravity", "gravity", {})', 'pbf.fix("pbf", "pbf", {})', 'pbf.fix("walls", "box", {})',
+        "pbf.run_until(var.t_end or 0.002)"]) + "\n")
+    g.file("scene_late.lua", "\n".join([
+        "-- scene_late.lua: pbf.scene after a particle exists.",
+        "pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}", "pbf.kernel_radius(0.02)", "pbf.timestep(0.001)",
+        "pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}",
+        "pbf.scene(function() end)"]) + "\n")
+    g.file("scene_error.lua", "\n".join([
+        "-- scene_error.lua: an error inside the function pbf.scene calls names the line inside it.",
+        "pbf.scene(function()", "  pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}", "  pbf.kernel_radius(-1)",
+        "end)"]) + "\n")
+    g.file("too_large.lua", "\n".join([
+        "-- too_large.lua: half the usual spacing at a step that keeps the column 7% compressed.",
+        "pbf.domain{lo = {0, 0, 0}, hi = {0.4, 0.1, 0.4}}", "pbf.kernel_radius(0.01)", "pbf.timestep(0.003)",
+        "pbf.lattice{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.2}, spacing = 0.005}", 'pbf.fix("gravity", "gravity", {})',
+        'pbf.fix("pbf", "pbf", {iterations = 2})', 'pbf.fix("walls", "box", {})', "pbf.run(70)"]) + "\n")
+    first, ok = f"{d}/first.lua", f"{d}/ok.lua"
+    g.section("A newcomer's mistakes: a misspelt -v variable is reported when the first run starts; -v restart "
+              "given to a script that cannot continue is refused at its first run (before it writes over the outputs "
+              "of the run it was meant to continue); pbf.scene misused; a step that leaves the fluid compressed.")
+    cases = [
+        ("first_v_typo", f"run {first} -v t_ned=0.05", "warned",
+         "has not been read by && before its first run (did you mean 't_end'?)", ""),
+        ("first_v_far_from_any", f"run {first} -v colour=red", "warned", "'colour' given with -v was never read", ""),
+        ("first_restart_unread", f"run {ok} -v restart=out/x.restart", "refused",
+         "ok.lua:9: && has not read var.restart before its first run && pbf.scene", ""),
+        ("first_restart_missing", f"run {first} -v restart=nope.restart", "refused", "first.lua:2: && nope.restart",
+         ""),
+        ("first_scene_not_a_function", "run s.lua", "refused", "s.lua:1: && pbf.scene takes the function",
+         "repeat=s.lua:1:pbf.scene(42)\\n"),
+        ("first_scene_late", f"run {d}/scene_late.lua", "refused", "scene_late.lua:6: && before creating any particle",
+         ""),
+        ("first_scene_error_inside", f"run {d}/scene_error.lua", "refused", "scene_error.lua:4: && kernel", ""),
+        ("first_compressed", f"run {d}/too_large.lua", "warned",
+         "mean compression has stayed above 3% for 50 steps && too large for the kernel radius", ""),
+    ]
+    for name, cmd, outcome, expect, setup in cases:
+        g.case(name, cmd, outcome, expect, setup)
 
 
 def main():

@@ -12,7 +12,7 @@ command   what follows `pbfengine`, split like a shell line; placeholders: {dir}
           directory, {hostile} this directory, {scratch} the case's scratch directory (also
           the current directory of the run, so relative paths land there).
 outcome   refused   exit 1 (or the `exit=` of setup), not killed by a signal, stderr is one
-                    line, the error message, and it contains `expect`;
+                    line besides any warnings, the error message, and it contains `expect`;
           warned    exit 0 and exactly one line starting with "warning:" that contains
                     `expect`;
           accepted  exit 0 and no "warning:" line;
@@ -454,7 +454,9 @@ class Runner:
         warnings = [line for line in lines_of(both) if line.startswith("warning:")]
         if outcome == "refused":
             want = int(case.get("exit", "1"))
-            lines = [line for line in lines_of(err) if line.strip() and line.strip() != CLI_HINT]
+            # Warnings go to stderr too; the `warn=` directive checks them.
+            lines = [line for line in lines_of(err)
+                     if line.strip() and line.strip() != CLI_HINT and not line.startswith("warning:")]
             if rc != want:
                 problems.append(f"expected refused (exit {want}), got {got}")
             elif not lines:

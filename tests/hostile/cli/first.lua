@@ -1,0 +1,11 @@
+-- first.lua: a column that reads var.t_end and continues from -v restart=FILE (pbf.scene).
+pbf.scene(function()
+  pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+  pbf.kernel_radius(0.02)
+  pbf.timestep(0.001)
+  pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+end)
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run_until(var.t_end or 0.002)
