@@ -3,14 +3,15 @@
 // "obj", 's' for "stl", anything else none (Assimp then asks every reader it has, as for a
 // file of an extension it does not know); the rest is the file. A mesh is either read, with
 // what the reader promises (triangles, indices in range, finite coordinates within 1e6 m, no
-// repeated corner), or refused with a pbf::Error naming it; the closedness check may refuse
-// any mesh with a pbf::Error naming it, and a mesh it takes has a finite volume, which
-// orient_outward makes positive.
+// repeated corner), or refused with a pbf::Error naming it; orient_surface may refuse any
+// mesh with a pbf::Error naming it, and a mesh it takes has a finite volume and nothing left
+// to turn (a second pass, which refuses any triangle it would turn, changes nothing).
 #include <cmath>
 #include <string>
 
 #include "engine/core/error.hpp"
 #include "engine/geometry/mesh_file.hpp"
+#include "engine/geometry/mesh_surface.hpp"
 #include "fuzz_input.hpp"
 
 using namespace pbf;
@@ -45,14 +46,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const auto& v : mesh.vertices)
     for (const double x : v) fuzz::check(std::isfinite(x) && std::abs(x) <= 1e6, "a coordinate read is out of range");
   try {
-    check_closed(mesh, name);
+    orient_surface(mesh, name, true);
   } catch (const Error& e) {
     fuzz::check_names(e, name);
     return 0;
   }
   fuzz::check(std::isfinite(enclosed_volume(mesh)), "the volume of a closed mesh is not finite");
-  orient_outward(mesh);
-  fuzz::check(enclosed_volume(mesh) >= 0, "orient_outward left a negative volume");
-  check_closed(mesh, name);  // flipping every triangle keeps it closed: any throw is a finding
+  TriangleMesh again = mesh;
+  orient_surface(again, name, false);  // any throw is a finding
+  fuzz::check(again.triangles == mesh.triangles, "a mesh oriented once was turned again");
   return 0;
 }

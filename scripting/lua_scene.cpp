@@ -10,6 +10,7 @@
 #include "engine/sph/lattice.hpp"
 #include "engine/geometry/mesh_file.hpp"
 #include "engine/geometry/mesh_sdf.hpp"
+#include "engine/geometry/mesh_surface.hpp"
 #include "engine/geometry/shape.hpp"
 #include "engine/core/simulation.hpp"
 #include "scripting/script_state.hpp"
@@ -111,6 +112,7 @@ int l_lattice(lua_State* L) {
                               {"center", ParamType::Vector3, std::nullopt, "m", "", true},
                               {"radius", ParamType::Real, 0.0, "m", ""},
                               {"mesh", ParamType::String, std::nullopt, "", "", true},
+                              {"orient", ParamType::Bool, std::nullopt, "", "", true},
                               ParamSpec{"scale", ParamType::Vector3, Vec3{1, 1, 1}, "", ""}.or_one_number(),
                               {"rotate", ParamType::Vector3, Vec3{0, 0, 0}, "deg", ""},
                               {"translate", ParamType::Vector3, Vec3{0, 0, 0}, "m", ""}});
@@ -119,6 +121,7 @@ int l_lattice(lua_State* L) {
   if (radius < 0 || (radius > 0) != p.has("center"))
     throw Error("pbf.lattice: a sphere needs both 'center' and a positive 'radius'");
   if (radius > 0 && p.has("mesh")) throw Error("pbf.lattice: give a sphere or a mesh, not both");
+  if (p.has("orient") && !p.has("mesh")) throw Error("pbf.lattice: 'orient' applies to a 'mesh' only");
   // The region: lo and hi, or the mesh's bounds (within the domain) where they are left out.
   std::unique_ptr<Shape> shape;
   Vec3 lo{}, hi{};
@@ -129,8 +132,7 @@ int l_lattice(lua_State* L) {
     for (double factor : p.vec3("scale"))
       if (!(factor > 0 && factor <= 1e6)) throw Error(fmt::format("pbf.lattice: 'scale' must be in (0, 1e6], got {}", factor));
     TriangleMesh mesh = read_mesh_file(file);
-    check_closed(mesh, fmt::format("pbf.lattice: mesh file '{}'", file));
-    orient_outward(mesh);
+    orient_surface(mesh, fmt::format("pbf.lattice: mesh file '{}'", file), !p.has("orient") || p.boolean("orient"));
     Placement placement;
     placement.scale = p.vec3("scale");
     for (int a = 0; a < 3; ++a) {

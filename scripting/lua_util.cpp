@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "scripting/lua_motion.hpp"
@@ -86,6 +87,24 @@ std::string where(lua_State* L) {
   lua_Debug ar;
   if (!innermost_lua_frame(L, ar)) return "";
   return fmt::format("{}:{}: ", chunk_path(ar), ar.currentline);
+}
+
+std::string beside_script(lua_State* L, const std::string& path) {
+  namespace fs = std::filesystem;
+  lua_Debug ar;
+  if (fs::path(path).is_absolute() || !innermost_lua_frame(L, ar) || ar.source[0] != '@') return "";
+  std::error_code ec;
+  const fs::path here = fs::current_path(ec);
+  const fs::path folder = fs::weakly_canonical(fs::absolute(chunk_path(ar), ec).parent_path(), ec);
+  if (ec || folder == here) return "";
+  std::string note = fmt::format("; the script is in {}", folder.string());
+  const fs::path beside = folder / path;
+  if (fs::exists(beside, ec)) {
+    std::string from_here = fs::relative(beside, here, ec).string();
+    if (ec || from_here.empty() || from_here.size() > beside.string().size()) from_here = beside.string();
+    note += fmt::format(", which holds '{}': give its path from the current folder, '{}'", path, from_here);
+  }
+  return note;
 }
 
 void mark_engine_error(lua_State* L) {

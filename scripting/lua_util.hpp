@@ -15,6 +15,11 @@ namespace pbf::lua {
 // "FILE:LINE: " of the Lua code that called the running C function.
 std::string where(lua_State* L);
 
+// For a relative `path` that named no file: where the script that called is, when that is
+// not the current folder ("; the script is in DIR"), and the path to give when the file is
+// beside the script; else "".
+std::string beside_script(lua_State* L, const std::string& path);
+
 // Whether a message already says where, with "CHUNK:LINE:" in its first line (Lua's form,
 // and the engine's).
 bool has_position(const char* message);
@@ -55,6 +60,8 @@ int guarded(lua_State* L) {
     std::string message;
     try {
       return F(L);
+    } catch (const MissingFile& e) {
+      message = where(L) + e.what() + beside_script(L, e.path());
     } catch (const Error& e) {
       message = e.located() ? e.what() : where(L) + e.what();
     } catch (const std::bad_alloc&) {

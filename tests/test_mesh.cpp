@@ -1,6 +1,7 @@
 // Triangle meshes: a cube read back from OBJ, ASCII STL and binary STL; placement against
-// hand-computed vertices; the closedness check; the primitives' meshes against their exact
-// volumes; and every malformed file refused with a pbf::Error naming it.
+// hand-computed vertices; the primitives' meshes against their exact volumes; and every
+// malformed file refused with a pbf::Error naming it. Closedness and orientation:
+// test_mesh_surface.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/geometry/mesh_file.hpp"
+#include "engine/geometry/mesh_surface.hpp"
 #include "engine/geometry/primitives.hpp"
 #include "test_util.hpp"
 
@@ -75,7 +77,9 @@ void expect_unit_cube(const TriangleMesh& m) {
   const auto [lo, hi] = bounds(m);
   EXPECT_EQ(lo, (Vec{0, 0, 0}));
   EXPECT_EQ(hi, (Vec{1, 1, 1}));
-  EXPECT_NO_THROW(check_closed(m, "the cube"));
+  TriangleMesh oriented = m;
+  EXPECT_NO_THROW(orient_surface(oriented, "the cube", false));
+  EXPECT_EQ(oriented.triangles, m.triangles);
 }
 
 // The cube as read from OBJ; its vertices are numbered as the triangles first use them.
@@ -110,12 +114,11 @@ TEST(MeshFile, KeepsTheFilesOrientationAndJoinsMinusZero) {
   obj.replace(obj.find("v 0 0 0"), 7, "v -0 0 -0");
   TriangleMesh m = read_text(obj);
   EXPECT_EQ(m.vertices.size(), 8u);
-  // An inward-facing file reads inward; orient_outward turns it.
+  // An inward-facing file reads inward; orient_surface turns it, even without `orient`.
   for (auto& t : m.triangles) std::swap(t[0], t[1]);
   EXPECT_NEAR(enclosed_volume(m), -1.0, 1e-12);
-  orient_outward(m);
+  orient_surface(m, "the cube", false);
   EXPECT_NEAR(enclosed_volume(m), 1.0, 1e-12);
-  EXPECT_NO_THROW(check_closed(m, "the cube"));
 }
 
 // glTF places meshes by a tree of nodes. The tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1),
@@ -163,7 +166,9 @@ TEST(MeshFile, AppliesNodeTransformsAndUndoesMirroring) {
         << v[0] << " " << v[1] << " " << v[2];
   // Both copies face outward: the mirrored one's triangles were reversed.
   EXPECT_NEAR(enclosed_volume(m), 2.0 / 6, 1e-15);
-  EXPECT_NO_THROW(check_closed(m, "two tetrahedra"));
+  TriangleMesh oriented = m;
+  EXPECT_NO_THROW(orient_surface(oriented, "two tetrahedra", false));
+  EXPECT_EQ(oriented.triangles, m.triangles);
 }
 
 TEST(MeshPlace, ScalesRotatesThenTranslates) {
@@ -210,36 +215,6 @@ TEST(MeshPlace, RotationMatrixIsARotation) {
   EXPECT_NEAR(r[6], -std::sin(y), 1e-15);
   EXPECT_NEAR(r[7], std::sin(x) * std::cos(y), 1e-15);
   EXPECT_NEAR(r[8], std::cos(x) * std::cos(y), 1e-15);
-}
-
-TEST(MeshClosed, AcceptsTheClosedMeshes) {
-  EXPECT_NO_THROW(check_closed(unit_cube(), "cube"));
-  EXPECT_NO_THROW(check_closed(box_mesh({-1, 0, 2}, {0.5, 3, 2.25}), "box"));
-  EXPECT_NO_THROW(check_closed(sphere_mesh({1, 2, 3}, 0.5, 0.05), "sphere"));
-  EXPECT_NO_THROW(check_closed(sphere_mesh({0, 0, 0}, 1, 10), "icosahedron"));
-  EXPECT_NO_THROW(check_closed(cylinder_mesh({0, 0, 0}, {1, 1, 1}, 0.3, 0.01), "cylinder"));
-}
-
-TEST(MeshClosed, RefusesOpenFlippedAndCrowdedEdges) {
-  const TriangleMesh cube = box_mesh({0, 0, 0}, {1, 1, 1});  // corners numbered as kCorners
-  TriangleMesh open = cube;
-  open.triangles.resize(10);  // the +x face gone: its four sides are on one triangle each
-  const std::string e = error_of([&] { check_closed(open, "solid 'tank'"); });
-  EXPECT_NE(e.find("solid 'tank' is not a closed"), std::string::npos) << e;
-  EXPECT_NE(e.find("4 edges open"), std::string::npos) << e;
-  EXPECT_NE(e.find("needs a closed surface"), std::string::npos) << e;
-  EXPECT_NE(e.find("the edge from ("), std::string::npos) << e;
-
-  TriangleMesh flipped = cube;  // the -z face flipped
-  for (int i : {0, 1}) std::swap(flipped.triangles[i][1], flipped.triangles[i][2]);
-  EXPECT_ERROR_NAMING(check_closed(flipped, "solid 'tank'"), "solid 'tank'",
-                    "4 edges whose two triangles face opposite ways");
-
-  TriangleMesh fin = cube;
-  fin.vertices.push_back({0.5, -1, 0});
-  fin.triangles.push_back({0, 1, 8});  // a third triangle on the edge from (0, 0, 0) to (1, 0, 0)
-  EXPECT_ERROR_NAMING(check_closed(fin, "fin"), "fin", "1 edge shared by more than two triangles");
-  EXPECT_ERROR_NAMING(check_closed(fin, "fin"), "fin", "from (0, 0, 0) to (1, 0, 0)");
 }
 
 TEST(MeshPrimitives, BoxVolumeAndBounds) {
@@ -319,7 +294,10 @@ TEST(MeshPrimitives, PlanePatchIsTheSectionOfTheBox) {
 TEST(MeshFile, RefusesMissingAndEmptyFiles) {
   const test::TempDir dir("mesh-refused");
   const std::string missing = (dir / "missing.obj").string();
-  EXPECT_ERROR_NAMING(read_mesh_file(missing), "mesh file '" + missing + "'", "cannot be read (No such file");
+  EXPECT_ERROR_NAMING(read_mesh_file(missing), "mesh file '" + missing + "'", "not found");
+  // A relative path: the message says where it was looked for.
+  EXPECT_ERROR_NAMING(read_mesh_file("no-such-mesh.obj"), "mesh file 'no-such-mesh.obj' not found",
+                      ": relative paths are taken from the current folder, " + fs::current_path().string());
   EXPECT_ERROR_NAMING(read_mesh_file(dir.string()), dir.string(), "cannot be read (it is a directory)");
   test::write_file(dir / "empty.stl", "");
   EXPECT_ERROR_NAMING(read_mesh_file((dir / "empty.stl").string()), "empty.stl", "the file is empty");

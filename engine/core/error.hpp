@@ -1,6 +1,7 @@
 #pragma once
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace pbf {
 
@@ -15,6 +16,17 @@ class Error : public std::runtime_error {
 
  private:
   bool located_;
+};
+
+// A file that is not there, named by `path` as the user gave it. The command line adds,
+// for a relative path, where the script that named it is, which the engine does not know.
+class MissingFile : public Error {
+ public:
+  MissingFile(const std::string& message, std::string path) : Error(message), path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
 };
 
 }  // namespace pbf

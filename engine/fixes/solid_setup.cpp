@@ -212,6 +212,8 @@ void register_solid(StyleRegistry& r) {
          {ParamSpec{"shape", ParamType::String, std::string("mesh"), "", "what the solid is"}.one_of(
               {"mesh", "box", "sphere", "cylinder", "plane"}),
           ParamSpec{"file", ParamType::String, std::nullopt, "", "mesh file (OBJ, STL, ...) for shape 'mesh'", true},
+          ParamSpec{"orient", ParamType::Bool, std::nullopt, "",
+                    "shape 'mesh': turn triangles that face the wrong way (true, the default) or refuse them", true},
           ParamSpec{"fluid", ParamType::String, std::string("outside"), "",
                     "which side the fluid is on: outside (an obstacle) or inside (a container)"}
               .one_of({"outside", "inside"}),

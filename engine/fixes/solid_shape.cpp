@@ -8,6 +8,7 @@
 #include "engine/core/error.hpp"
 #include "engine/geometry/mesh_file.hpp"
 #include "engine/geometry/mesh_sdf.hpp"
+#include "engine/geometry/mesh_surface.hpp"
 #include "engine/geometry/primitives.hpp"
 
 namespace pbf {
@@ -39,7 +40,7 @@ SolidShape::SolidShape(const std::string& id, const Params& p) : id_(id), shape_
   }
   // Each shape's own parameters; another shape's given here is a slip, refused.
   const std::vector<std::pair<std::string, std::vector<std::string>>> own = {
-      {"mesh", {"file"}},
+      {"mesh", {"file", "orient"}},
       {"box", {"lo", "hi"}},
       {"sphere", {"center", "radius"}},
       {"cylinder", {"base", "top", "radius"}},
@@ -63,8 +64,7 @@ SolidShape::SolidShape(const std::string& id, const Params& p) : id_(id), shape_
     file_ = p.string("file");
     TriangleMesh mesh = read_mesh_file(file_);  // first: it refuses what is no mesh file (a device, a directory)
     file_hash_ = hash_of_file(file_);
-    check_closed(mesh, fmt::format("mesh file '{}'", p.string("file")));
-    orient_outward(mesh);
+    orient_surface(mesh, fmt::format("mesh file '{}'", file_), !p.has("orient") || p.boolean("orient"));
     place(mesh, placement_);
     surface_ = std::move(mesh);
     mesh_ = true;

@@ -1,5 +1,5 @@
-// Reading meshes through Assimp and refusing what the engine cannot use; the closedness
-// check, volume, placement and bounds of a mesh (mesh_file.hpp).
+// Reading meshes through Assimp and refusing what the engine cannot use; the placement and
+// bounds of a mesh (mesh_file.hpp).
 #include "engine/geometry/mesh_file.hpp"
 
 #include <algorithm>
@@ -16,11 +16,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <fstream>
 #include <limits>
 #include <numbers>
-#include <tuple>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -265,6 +263,16 @@ TriangleMesh read_mesh_file(const std::string& path) {
   // never end: say what the path is instead.
   std::error_code ec;
   const auto status = fs::status(path, ec);
+  if (status.type() == fs::file_type::not_found) {
+    // A script run from another folder than its own is the usual reason: say where a
+    // relative path was looked for.
+    std::string where;
+    if (fs::path(path).is_relative()) {
+      const fs::path here = fs::current_path(ec);
+      where = fmt::format(": relative paths are taken from the current folder{}", ec ? "" : ", " + here.string());
+    }
+    throw MissingFile(fmt::format("mesh file '{}' not found{}", path, where), path);
+  }
   if (fs::is_directory(status)) fail(path, "cannot be read (it is a directory)");
   if (fs::exists(status) && !fs::is_regular_file(status))
     fail(path, "cannot be read (not a regular file: a device, a pipe or a socket)");
@@ -285,16 +293,6 @@ TriangleMesh read_mesh_file(const std::string& path) {
 
 namespace {
 
-// One use of an edge by a triangle: the edge as (smaller, larger) vertex index, and whether
-// the triangle runs along it from the smaller to the larger.
-struct EdgeUse {
-  std::uint32_t lo, hi;
-  bool forward;
-  bool operator<(const EdgeUse& o) const { return std::tie(lo, hi, forward) < std::tie(o.lo, o.hi, o.forward); }
-};
-
-std::string point_text(const Vec& p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p[0], p[1], p[2]); }
-
 // sin and cos of an angle in degrees, exact at multiples of 90 (so a quarter turn keeps a
 // box's faces on the axes exactly).
 std::pair<double, double> sin_cos_deg(double deg) {
@@ -309,75 +307,6 @@ std::pair<double, double> sin_cos_deg(double deg) {
 }
 
 }  // namespace
-
-void check_closed(const TriangleMesh& mesh, const std::string& what) {
-  if (mesh.triangles.empty()) throw Error(fmt::format("{} has no triangles", what));
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * mesh.triangles.size());
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    const auto& t = mesh.triangles[i];
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-      if (std::max(a, b) >= mesh.vertices.size())
-        throw Error(fmt::format("{}: triangle {} refers to vertex {}, but there are {} vertices", what, i + 1,
-                                std::max(a, b) + 1, mesh.vertices.size()));
-      uses.push_back({std::min(a, b), std::max(a, b), a < b});
-    }
-  }
-  std::sort(uses.begin(), uses.end());
-  // A closed, consistently oriented surface uses each edge twice, once in each direction.
-  std::size_t open = 0, crowded = 0, flipped = 0;
-  const EdgeUse* example = nullptr;
-  const char* example_kind = "";
-  for (std::size_t i = 0, j; i < uses.size(); i = j) {
-    std::size_t forward = 0;
-    for (j = i; j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi; ++j)
-      forward += uses[j].forward;
-    const std::size_t n = j - i;
-    if (n == 2 && forward == 1) continue;
-    if (n == 1) ++open;
-    else if (n > 2) ++crowded;
-    else ++flipped;
-    if (!example) {
-      example = &uses[i];
-      example_kind = n == 1  ? "an open one"
-                     : n > 2 ? "one with more than two triangles"
-                             : "one with a flipped triangle";
-    }
-  }
-  if (!example) return;
-  auto edges = [](std::size_t n) { return fmt::format("{} edge{}", n, n == 1 ? "" : "s"); };
-  std::vector<std::string> counts;
-  if (open) counts.push_back(fmt::format("{} open (on one triangle only)", edges(open)));
-  if (crowded) counts.push_back(fmt::format("{} shared by more than two triangles", edges(crowded)));
-  if (flipped)
-    counts.push_back(fmt::format("{} whose two triangles face opposite ways (a triangle flipped)", edges(flipped)));
-  throw Error(fmt::format("{} is not a closed, consistently oriented surface: {}; {} is the edge from {} to {}. "
-                          "A solid with fluid inside or outside it needs a closed surface, to tell the two apart",
-                          what, fmt::join(counts, ", "), example_kind, point_text(mesh.vertices[example->lo]),
-                          point_text(mesh.vertices[example->hi])));
-}
-
-double enclosed_volume(const TriangleMesh& mesh) {
-  // About the centre of the bounds rather than the origin: the same volume for a closed
-  // surface, with less cancellation for a mesh far from the origin.
-  const auto [lo, hi] = bounds(mesh);
-  const Vec c{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-  double six_v = 0;
-  for (const auto& t : mesh.triangles) {
-    Vec p[3];
-    for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) p[k][d] = mesh.vertices[t[k]][d] - c[d];
-    six_v += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-             p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
-  }
-  return six_v / 6;
-}
-
-void orient_outward(TriangleMesh& mesh) {
-  if (enclosed_volume(mesh) >= 0) return;
-  for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
-}
 
 std::array<double, 9> rotation_matrix(const std::array<double, 3>& rotate_deg) {
   const auto [sx, cx] = sin_cos_deg(rotate_deg[0]);

@@ -1,6 +1,6 @@
 #pragma once
-// Triangle meshes from files (OBJ, STL and whatever else Assimp reads), and what the solids
-// need to know of them: whether they are closed, their volume, their placement and bounds.
+// Triangle meshes from files (OBJ, STL and whatever else Assimp reads), their placement and
+// bounds. Whether one bounds a solid, and which way it faces: mesh_surface.hpp.
 #include <array>
 #include <cstddef>
 #include <string>
@@ -25,23 +25,12 @@ TriangleMesh read_mesh_file(const std::string& path);
 TriangleMesh read_mesh_memory(const void* data, std::size_t size, const std::string& name,
                               const std::string& extension_hint);
 
-// Throws a pbf::Error naming `what` unless every edge is shared by exactly two triangles
-// that run along it in opposite directions (a closed, consistently oriented surface).
-void check_closed(const TriangleMesh& mesh, const std::string& what);
-
-// The volume the surface encloses (divergence theorem): positive when its triangles are
-// oriented outward, negative when inward. Meaningful for closed meshes only.
-double enclosed_volume(const TriangleMesh& mesh);
-
-// Reverses every triangle if the enclosed volume is negative.
-void orient_outward(TriangleMesh& mesh);
-
 // The rotation of a Placement, row-major: R = Rz * Ry * Rx (degrees about the fixed x, then
 // y, then z axes). Multiples of 90 degrees give exact zeros and ones.
 std::array<double, 9> rotation_matrix(const std::array<double, 3>& rotate_deg);
 
-// Scales about the origin, rotates (rotation_matrix), then translates. A placement with a
-// negative scale would turn the surface inside out: orient_outward() after it.
+// Scales about the origin, rotates (rotation_matrix), then translates. A mirroring scale (an
+// odd number of negative factors) reverses every triangle, so the surface keeps facing out.
 void place(TriangleMesh& mesh, const Placement& placement);
 
 // The smallest box holding every vertex: {lo, hi}; lo > hi (infinities) when there is none.

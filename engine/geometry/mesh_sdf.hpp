@@ -8,8 +8,8 @@
 
 namespace pbf {
 
-// `mesh` must be closed and oriented outward (engine/geometry/mesh_file.hpp: check_closed,
-// orient_outward). Distances are exact to within float rounding up to `band` from the
+// `mesh` must be closed and oriented outward (engine/geometry/mesh_surface.hpp:
+// orient_surface). Distances are exact to within float rounding up to `band` from the
 // surface, on a grid of spacing `voxel` whose nodes sit at integer multiples of it.
 std::unique_ptr<Shape> mesh_shape(const TriangleMesh& mesh, double voxel, double band);
 

@@ -50,6 +50,8 @@ std::unique_ptr<Fix> StyleRegistry::make_fix(const std::string& id, const std::s
   Params params(what, info.params, given);
   try {
     return info.make_fix(id, params);
+  } catch (const MissingFile& e) {  // kept apart: the command line says more of it
+    throw MissingFile(fmt::format("{}: {}", what, e.what()), e.path());
   } catch (const Error& e) {  // range checks in the constructor
     throw Error(fmt::format("{}: {}", what, e.what()));
   }

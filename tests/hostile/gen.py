@@ -310,6 +310,7 @@ NON_NUMERIC = [
                                   ("inside", '"inside"', "A"), ("outside", '"outside"', "A")]),
     ("solid", "file", "string", [("empty", '""', "R"), ("missing", '"nope.obj"', "R"),
                                  ("directory", '"."', "R"), ("nul", '"cube.obj\\0.stl"', "R")]),
+    ("solid", "orient", "bool", [("true", "true", "R")]),  # a mesh's only: refused for the base sphere
     ("solid", "no_slip", "bool", [("true", "true", "A")]),
     ("solid", "wall_density", "bool", [("false", "false", "A")]),
 ]
@@ -521,6 +522,9 @@ TYPES = [
      "pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01, center = {0.04, 0.04, 0.04}}"),
     ("lattice", "radius_only",
      "pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01, radius = 0.02}"),
+    ("lattice", "orient_without_mesh",
+     "pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01, orient = true}"),
+    ("lattice", "orient_string", 'pbf.lattice{mesh = "cube.obj", spacing = 0.01, orient = "yes"}'),
     ("lattice", "no_spacing", "pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}}"),
     ("lattice", "no_lo", "pbf.lattice{hi = {0.06, 0.06, 0.06}, spacing = 0.01}"),
     ("lattice", "unknown_key", "pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01, "
@@ -1682,18 +1686,21 @@ OPENGEX_TETRAHEDRON = (
 
 def gen_mesh(g):
     d = "{dir}"
-    g.file("run.lua", "\n".join([
+    run_lua = [
         "-- run.lua: a mesh file (-v file=PATH), in the coordinates of the unit cube [0, 1]^3, used as",
         "--   -v use=container  the solid fix with fluid = \"inside\", scaled to [0.01, 0.09]^3 around the fluid;",
         "--   -v use=obstacle   the solid fix (fluid outside), scaled to 0.03 m in the corner x, y > 0.065 beside",
         "--                     the fluid;",
         "--   -v use=lattice    pbf.lattice{mesh = PATH}, scaled to [0.02, 0.06]^3: 64 particles.",
+        "-- -v orient=true or false, when given, is the `orient` of the solid fix and of pbf.lattice.",
         "-- The domain is [0, 0.1]^3, h = 0.02 m, the lattice spacing 0.01 m; then two steps.",
+        "local orient = nil",
+        "if var.orient ~= nil then orient = var.orient == \"true\" end",
         "pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}",
         "pbf.kernel_radius(0.02)",
         "pbf.timestep(0.001)",
         'if var.use == "lattice" then',
-        "  pbf.lattice{mesh = var.file, scale = 0.04, translate = {0.02, 0.02, 0.02}, spacing = 0.01}",
+        "  pbf.lattice{mesh = var.file, scale = 0.04, translate = {0.02, 0.02, 0.02}, spacing = 0.01, orient = orient}",
         "else",
         "  pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}",
         "end",
@@ -1701,25 +1708,35 @@ def gen_mesh(g):
         'pbf.fix("pbf", "pbf", {})',
         'pbf.fix("walls", "box", {})',
         'if var.use == "container" then',
-        '  pbf.fix("tank", "solid", {file = var.file, fluid = "inside", scale = 0.08, translate = {0.01, 0.01, 0.01}})',
+        '  pbf.fix("tank", "solid", {file = var.file, fluid = "inside", scale = 0.08, translate = {0.01, 0.01, 0.01},',
+        '                            orient = orient})',
         'elseif var.use == "obstacle" then',
-        '  pbf.fix("block", "solid", {file = var.file, scale = 0.03, translate = {0.065, 0.065, 0.01}})',
+        '  pbf.fix("block", "solid", {file = var.file, scale = 0.03, translate = {0.065, 0.065, 0.01},',
+        '                             orient = orient})',
         'elseif var.use ~= "lattice" then',
         '  error("-v use=container, obstacle or lattice")',
         "end",
         "pbf.run(2)",
-    ]) + "\n")
+    ]
+    g.file("run.lua", "\n".join(run_lua) + "\n")
     solid_name = {"container": "tank", "obstacle": "block"}
+    # The line of run.lua that reads the mesh, for each use: a refusal names it.
+    line_of = {use: 1 + next(k for k, text in enumerate(run_lua) if text.strip().startswith(start))
+               for use, start in (("container", 'pbf.fix("tank"'), ("obstacle", 'pbf.fix("block"'),
+                                  ("lattice", "pbf.lattice{mesh"))}
 
-    def case(name, fname, uses, outcome, expect=None, setup="", path=None):
-        """The file fname (written or made by setup) used in each of `uses`. A refusal names the
-        file; `expect` (a dict by use, or one text) replaces that."""
+    def case(name, fname, uses, outcome, expect=None, setup="", path=None, orient=None):
+        """The file fname (written or made by setup) used in each of `uses`, with -v orient=ORIENT
+        when given. A refusal names the file; `expect` (a dict by use, or one text) replaces
+        that; "{line}" in it is the line of run.lua that reads the mesh."""
         for use in uses:
             target = path if path is not None else f"{d}/{fname}"
             exp = "-"
             if outcome == "refused":
                 exp = expect.get(use, fname) if isinstance(expect, dict) else (expect or fname)
-            g.case(f"{name}_{use}", f"run {d}/run.lua -v use={use} -v file={target}", outcome, exp, setup)
+                exp = exp.replace("{line}", f"run.lua:{line_of[use]}:")
+            extra = "" if orient is None else f" -v orient={orient}"
+            g.case(f"{name}_{use}", f"run {d}/run.lua -v use={use} -v file={target}{extra}", outcome, exp, setup)
 
     both = ("container", "lattice")
     every = ("container", "obstacle", "lattice")
@@ -1750,7 +1767,11 @@ def gen_mesh(g):
     g.section("No mesh at all: a missing file, a directory, a device, an empty file, binary garbage, text that "
               "is not a mesh, points and lines only. Refused, naming the file, by the solid fix and by "
               "pbf.lattice.")
-    case("missing", "nope.obj", both, "refused", path="nope.obj")
+    case("missing", "nope.obj", both, "refused", path="nope.obj",
+         expect="{line} && 'nope.obj' not found: relative paths are taken from the current folder")
+    # The file is beside the script, but a relative path is taken from the current folder.
+    case("missing_beside_script", "cube.obj", both, "refused", path="cube.obj",
+         expect="{line} && 'cube.obj' not found && the script is in && which holds 'cube.obj'")
     case("directory", "dir.obj", both, "refused", setup="mkdir=dir.obj", path="dir.obj")
     case("dev_zero", "z.obj", both, "refused", setup="link=z.obj:/dev/zero; as=4G; timeout=10", path="z.obj")
     case("dev_urandom", "r.stl", both, "refused", setup="link=r.stl:/dev/urandom; as=4G; timeout=10", path="r.stl")
@@ -1830,18 +1851,44 @@ def gen_mesh(g):
         g.file(fname, OPENGEX_TETRAHEDRON)
         case(fname.replace(".", "_"), fname, both, "refused")
 
-    g.section("Surfaces that are not closed: a cube without a face (open), with a face flipped, two cubes "
-              "sharing an edge (four triangles on it). Refused as container, as obstacle and by pbf.lattice.")
-    flipped = list(CUBE_F)
-    flipped[-2:] = [(2, 8, 4), (2, 6, 8)]
-    for name, fname, content in [
-            ("open", "open.obj", obj_text(faces=CUBE_F[:-2], comment="the cube without its face x = 1")),
-            ("flipped", "flipped.obj", obj_text(faces=flipped, comment="the face x = 1 turned inward")),
+    g.section("Surfaces that are not closed or have no inside: a cube without a face (open), two cubes sharing "
+              "an edge (four triangles on it), the projective plane on six vertices (closed, but one-sided). "
+              "Refused as container, as obstacle and by pbf.lattice.")
+    for name, fname, content, words in [
+            ("open", "open.obj", obj_text(faces=CUBE_F[:-2], comment="the cube without its face x = 1"),
+             "not a closed surface: 4 edges open"),
             ("crowded", "crowded.obj", obj_text(vertices=CUBE_V + [(x + 1, y + 1, z) for x, y, z in CUBE_V],
                                                 faces=CUBE_F + [(a + 8, b + 8, c + 8) for a, b, c in CUBE_F],
-                                                comment="two cubes sharing an edge"))]:
+                                                comment="two cubes sharing an edge"),
+             "1 edge shared by more than two triangles"),
+            ("one_sided", "one_sided.obj",
+             obj_text(vertices=[(0, 0, 0), (1, 0, 0.1), (0.2, 1, 0.3), (0.9, 0.8, 0.7), (0.1, 0.4, 1), (0.6, 0.1, 0.9)],
+                      faces=[(1, 2, 3), (1, 3, 4), (1, 4, 5), (1, 5, 6), (1, 6, 2), (2, 3, 5), (3, 4, 6), (4, 5, 2),
+                             (5, 6, 3), (6, 2, 4)],
+                      comment="the projective plane on six vertices: every edge on two triangles, one-sided"),
+             "is a one-sided surface")]:
         g.file(fname, content)
-        case(name, fname, every, "refused")
+        case(name, fname, every, "refused", expect=f"{{line}} && {fname} && {words}")
+
+    g.section("Triangles that face the wrong way: the cube with its face x = 1 (triangles 11 and 12) turned "
+              "inward, and two cubes apart with the second turned inside out as a whole (triangles 13 to 24). "
+              "Turned outward by default (orient = true); refused with orient = false, naming the first triangle "
+              "and the way out.")
+    flipped = list(CUBE_F)
+    flipped[-2:] = [(2, 8, 4), (2, 6, 8)]
+    g.file("flipped.obj", obj_text(faces=flipped, comment="the face x = 1 turned inward"))
+    g.file("part_inside_out.obj", obj_text(vertices=CUBE_V + [(x + 2, y, z) for x, y, z in CUBE_V],
+                                           faces=CUBE_F + [(a + 8, c + 8, b + 8) for a, b, c in CUBE_F],
+                                           comment="two cubes apart, the second (beside the domain) inside out"))
+    for name, fname, words in [
+            ("flipped", "flipped.obj", "triangle 11 (counting the file's triangles from 1) faces the other way "
+                                       "from the triangles around it && 2 of the 12 triangles"),
+            ("part_inside_out", "part_inside_out.obj", "triangle 13 (counting the file's triangles from 1) faces "
+                                                       "the other way from the rest of the surface")]:
+        case(name, fname, every, "accepted")
+        case(f"{name}_orient_true", fname, every, "accepted", orient="true")
+        case(f"{name}_orient_false", fname, every, "refused", orient="false",
+             expect=f"{{line}} && {fname} && {words} && give orient = true")
 
     g.section("Meshes the scene cannot use: placed entirely outside the domain (refused naming the solid, or the "
               "file for pbf.lattice), thinner (0.0015 m) than the particle spacing as an obstacle (the fluid "

@@ -1,0 +1,9 @@
+-- pbf.lattice: orient_string: refused, naming the line
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{mesh = "cube.obj", spacing = 0.01, orient = "yes"}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.run(1)
