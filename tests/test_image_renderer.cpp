@@ -31,6 +31,8 @@ ImageSpec plain_spec(double radius) {
   spec.radius = radius;
   spec.draw_box = false;
   spec.colorbar = false;
+  spec.axes = false;
+  spec.scale_bar = false;
   return spec;
 }
 

@@ -30,6 +30,8 @@ ImageSpec side_spec() {
   spec.radius = 0.1;
   spec.draw_box = false;
   spec.colorbar = false;
+  spec.axes = false;
+  spec.scale_bar = false;
   return spec;
 }
 

@@ -32,7 +32,8 @@ Camera::Camera(const ImageSpec& spec, const Domain& domain, int scene_width) {
   const double distance = bounding_radius / std::sin(std::atan(outline / focal_zoom1));
   eye = spec.eye ? *spec.eye : sub(target, scaled(forward, distance));
   focal = focal_zoom1 * spec.zoom;
-  near = 1e-6 * norm(sub(target, eye));
+  focus = norm(sub(target, eye));
+  near = 1e-6 * focus;
 }
 
 }  // namespace pbf::render

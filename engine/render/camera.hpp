@@ -34,6 +34,7 @@ struct Camera {
   double focal;   // pixels per unit of (lateral offset / depth)
   double cx, cy;  // the image point on the view axis
   double near;    // nothing nearer than this is drawn
+  double focus;   // the depth of the look-at point (on the view axis), where the scale bar is true
 
   // The camera of `spec` for the scene area (the image's left `scene_width` columns); throws
   // pbf::Error when it looks at its own position or along 'up'.

@@ -15,6 +15,7 @@
 #include "engine/core/error.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/render/camera.hpp"
+#include "engine/render/image_overlay.hpp"
 #include "engine/render/image_text.hpp"
 #include "engine/render/solid_raster.hpp"
 #include "engine/render/tile_bins.hpp"
@@ -311,11 +312,22 @@ void ImageRenderer::render(const Domain& domain, const real* x, const real* y, c
     for (int px = layout.scene_width; px < W; ++px)
       std::copy(spec_.background.begin(), spec_.background.end(), &rgb[(static_cast<std::size_t>(py) * W + px) * 3]);
 
-  // 3. Overlays, serial and in a fixed order: box edges, colour bar, caption.
+  // 3. Overlays, serial and in a fixed order: box edges, colour bar, caption, triad, scale bar.
   const Rgb ink = ink_for(spec_.background);
   if (spec_.draw_box) draw_box(cam, domain, depth, layout.scene_width, rgb, W, H, ink);
   if (spec_.colorbar) draw_colorbar(layout, colormap_, *font_, vmin, vmax, spec_.label, rgb, W, H, ink);
   if (!caption.empty()) font_->draw(rgb, W, H, font_->pixels() * 2 / 3, font_->pixels() / 2 + font_->ascent(), caption, ink);
+  const render::GuideLayout guides(*font_, layout.scene_width, H);
+  if (spec_.axes && guides.triad_fits) render::draw_axis_triad(cam, guides, *font_, rgb, W, spec_.background);
+  const auto bar = spec_.scale_bar ? render::fit_scale_bar(cam, guides, *font_, spec_.axes) : std::nullopt;
+  if (bar) render::draw_scale_bar(*bar, guides, *font_, spec_.axes, rgb, W, ink, spec_.background);
+}
+
+std::optional<ScaleBar> ImageRenderer::scale_bar(const Domain& domain) const {
+  if (!spec_.scale_bar) return std::nullopt;
+  const Layout layout = make_layout(spec_, *font_);
+  const Camera cam(spec_, domain, layout.scene_width);
+  return render::fit_scale_bar(cam, render::GuideLayout(*font_, layout.scene_width, spec_.height), *font_, spec_.axes);
 }
 
 void write_png(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {

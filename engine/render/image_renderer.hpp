@@ -1,6 +1,7 @@
 #pragma once
 // A software renderer that draws particles as shaded spheres into an RGB image, with the
-// domain box, a colour bar and a caption, for image dumps. No GPU, no display.
+// domain box, a colour bar, a caption, an axis triad and a scale bar, for image dumps. No
+// GPU, no display.
 //
 // The camera is a perspective one with a 30 degree vertical field of view, looking along
 // `direction` at `center`, from the distance at which the domain's bounding sphere fits the
@@ -33,8 +34,9 @@ namespace pbf {
 
 struct ImageSpec {
   int width = 800, height = 600;  // pixels
-  std::array<double, 3> direction{-1, -2,
-                                  -1};  // view direction: from the camera toward the look-at point (need not be unit)
+  // View direction, from the camera toward the look-at point (need not be unit). The default,
+  // with up = +z, shows +x to the right, +y going away and +z up, seen a little from above.
+  std::array<double, 3> direction{1, 2, -1};
   std::array<double, 3> up{0, 0, 1};
   std::optional<std::array<double, 3>> center;  // look-at point; default the domain centre
   std::optional<std::array<double, 3>> eye;     // camera position; default: back along direction, the domain in view
@@ -44,6 +46,8 @@ struct ImageSpec {
   std::string label;                 // colour bar title, e.g. "speed (m/s)"
   bool draw_box = true;              // draw the domain box edges as lines
   bool colorbar = true;
+  bool axes = true;       // the axis triad at the bottom left
+  bool scale_bar = true;  // the scale bar at the bottom right, where one fits
   std::array<unsigned char, 3> background{255, 255, 255};
 };
 
@@ -70,6 +74,18 @@ struct SolidShading {
   static constexpr float grey = 190.0f;
 };
 
+// A scale bar: `metres` long (1, 2 or 5 x 10^k m), `pixels` long in the picture at the depth
+// of the camera's look-at point (a perspective picture has one scale per depth), labelled
+// e.g. "0.1 m".
+struct ScaleBar {
+  double metres = 0, pixels = 0;
+  std::string label;
+};
+
+// The longest round length (1, 2 or 5 x 10^k m) at most max_pixels long at pixels_per_metre;
+// none where either is not finite and positive.
+std::optional<ScaleBar> round_scale_bar(double pixels_per_metre, double max_pixels);
+
 class ImageRenderer {
  public:
   // Validates the spec (width and height 16..8192, zoom > 0, radius > 0, direction non-zero
@@ -86,6 +102,10 @@ class ImageRenderer {
   void render(const Domain& domain, const real* x, const real* y, const real* z, const double* value, std::size_t n,
               double vmin, double vmax, const std::string& caption, std::vector<unsigned char>& rgb,
               const std::vector<SolidSurface>& solids = {}) const;
+
+  // The scale bar that render() draws for `domain`: none when the spec turns it off or it
+  // does not fit beside the axis triad (a small image).
+  std::optional<ScaleBar> scale_bar(const Domain& domain) const;
 
   int width() const { return spec_.width; }
   int height() const { return spec_.height; }

@@ -21,7 +21,7 @@ std::vector<ParamSpec> ParticleImages::params() {
       {"max", ParamType::Real, 0.0, "field unit", "value at the top of the colour scale"},
       ParamSpec{"width", ParamType::Integer, std::int64_t{800}, "pixels", "image width"}.within(16, 8192),
       ParamSpec{"height", ParamType::Integer, std::int64_t{600}, "pixels", "image height"}.within(16, 8192),
-      {"direction", ParamType::Vector3, Vec3{-1, -2, -1}, "", "view direction, from the camera toward the centre"},
+      {"direction", ParamType::Vector3, Vec3{1, 2, -1}, "", "view direction, from the camera toward the centre"},
       {"up", ParamType::Vector3, Vec3{0, 0, 1}, "", "the direction that points up in the image"},
       {"center", ParamType::Vector3, std::nullopt, "m", "point the camera looks at (default: the domain's centre)", true},
       {"position", ParamType::Vector3, std::nullopt, "m",
@@ -33,6 +33,8 @@ std::vector<ParamSpec> ParticleImages::params() {
           .at_least(0),
       {"box", ParamType::Bool, true, "", "draw the domain's edges"},
       {"colorbar", ParamType::Bool, true, "", "draw the labelled colour bar"},
+      {"axes", ParamType::Bool, true, "", "draw the axis triad at the bottom left"},
+      {"scale_bar", ParamType::Bool, true, "", "draw a scale bar at the bottom right, where one fits"},
       {"solids", ParamType::Bool, true, "",
        "draw the solids' surfaces (grey; a container shows its inside, its near walls left out)"}};
 }
@@ -50,6 +52,8 @@ ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")
   spec_.colormap = p.string("colormap");
   spec_.draw_box = p.boolean("box");
   spec_.colorbar = p.boolean("colorbar");
+  spec_.axes = p.boolean("axes");
+  spec_.scale_bar = p.boolean("scale_bar");
   draw_solids_ = p.boolean("solids");
   // A placeholder radius checks every other parameter (and loads the font) now, at pbf.fix.
   ImageSpec check = spec_;
