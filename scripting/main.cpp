@@ -180,7 +180,10 @@ std::string continuation(const std::string& restart, const pbf::Script& script, 
   }
   kept.push_back("-v");
   kept.push_back("restart=" + restart);
-  return fmt::format("; continue with: {} (docs/user-guide.md#continuing-a-run-exactly)", command_line(kept));
+  // The ranks of a distributed run see their own command line, not the launcher's.
+  const std::string launcher = pbf::comm::distributed() ? fmt::format("mpirun -np {} ", pbf::comm::ranks()) : "";
+  return fmt::format("; continue with: {}{} (docs/user-guide.md#continuing-a-run-exactly)", launcher,
+                     command_line(kept));
 }
 
 // The end of a script that ran (or was stopped): what it wrote, in one list.
@@ -203,8 +206,11 @@ int run_script(const std::string& file, const std::vector<std::pair<std::string,
     for (const auto& warning : script->unread_variable_warnings()) spdlog::warn("{}", warning);
     list_outputs(*sim, log_path);
   } catch (const pbf::Interrupted& e) {
+    // Every rank of a distributed run stops after the same step (they agree on the signal),
+    // so they end together, as one process would: no abort.
     list_outputs(*sim, log_path);
-    return fail(e.what() + continuation(e.restart(), *script, words), 130);  // the shell's code for SIGINT
+    if (pbf::comm::root()) report(e.what() + continuation(e.restart(), *script, words));
+    return 130;  // the shell's code for SIGINT
   } catch (const std::exception& e) {
     // A failed step names the newest restart, which is whole.
     const std::string restart = sim ? sim->last_restart().path : "";

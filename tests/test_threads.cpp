@@ -55,8 +55,12 @@ TEST(Threads, TheDefaultIsOnePerUsableCoreAndSaysWhy) {
                            "of the time");
   c = choose_threads(cores(16, 16, 0, 4), std::nullopt, nullptr);
   EXPECT_EQ(c.threads, 4);
-  EXPECT_EQ(c.why, "one per core this process may use: 4 ranks share this node's 16 hardware threads");
+  EXPECT_EQ(c.why, "one per core each rank may use: 4 ranks share this node's 16 hardware threads");
   EXPECT_TRUE(c.warnings.empty());
+  // Ranks bound one to a core (Open MPI's default for 2 ranks): the rank's, and the node's, counts.
+  c = choose_threads(cores(2, 1, 0, 2), std::nullopt, nullptr);
+  EXPECT_EQ(c.threads, 1);
+  EXPECT_EQ(c.why, "one per core each rank may use: each rank's binding allows 1 of this node's 2 hardware threads");
 }
 
 TEST(Threads, MoreThreadsThanCoresRunButAreWarnedOnce) {

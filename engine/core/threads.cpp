@@ -132,6 +132,8 @@ std::string Cores::why() const {
   if (quota > 0 && n == by_quota && by_quota < affinity)
     return fmt::format("a CPU quota of {:g} core{} (cgroup), on {}", quota, quota == 1 ? "" : "s",
                        plural(affinity, "hardware thread"));
+  if (affinity < machine && ranks_on_node > 1)  // an MPI launcher's binding
+    return fmt::format("each rank's binding allows {} of this node's {}", affinity, plural(machine, "hardware thread"));
   if (affinity < machine)
     return fmt::format("its CPU affinity allows {} of this machine's {}", affinity, plural(machine, "hardware thread"));
   return fmt::format("this machine's {}", plural(machine, "hardware thread"));
@@ -141,7 +143,7 @@ ThreadChoice choose_threads(const Cores& cores, std::optional<int> requested, co
   ThreadChoice c;
   const int usable = cores.usable();
   c.threads = usable;
-  c.why = fmt::format("one per core this process may use: {}", cores.why());
+  c.why = fmt::format("one per core {} may use: {}", cores.ranks_on_node > 1 ? "each rank" : "this process", cores.why());
   if (!omp_num_threads) omp_num_threads = std::getenv(kGivenThreads);  // moved aside by the restart
   if (requested) {
     c.threads = *requested;

@@ -365,6 +365,10 @@ pbf.run(60 - pbf.step())
     stopped = re.search(r"interrupted \(Ctrl-C\) after step (\d+) .*wrote restart '([^']+)'", log)
     if code == 0 or not stopped or os.path.exists(os.path.join(where, "f_00001.txt")):
         fail(f"SIGTERM at 2 ranks: exit {code}, expected a restart and a stop before the script's end:\n{log}")
+    # The ranks end together, as one process: one message, with the command that continues, no abort.
+    if log.count("interrupted (Ctrl-C)") != 1 or "MPI_ABORT" in log or \
+            f"continue with: mpirun -np 2 {args.binary} run" not in log:
+        fail(f"SIGTERM at 2 ranks: expected one message naming `mpirun -np 2 ... -v restart=...`, no abort:\n{log}")
     on_three = continued("term_on3", os.path.join(where, stopped.group(2)), 3)
     if not filecmp.cmp(straight, on_three, shallow=False):
         fail("the SIGTERM restart continued on 3 ranks ends with other bits than the run that never stopped")
