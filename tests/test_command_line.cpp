@@ -176,7 +176,8 @@ TEST(LogFile, HoldsAHeaderThenWhatTheRunPrinted) {
   // Then exactly what the run printed: Lua's print, thermo, the timing table, warnings.
   EXPECT_EQ(log.substr(header.size()), r.out);
   EXPECT_NE(r.out.find("from Lua\t42\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("          step          time            ke\n             0             0             0\n"),
+  EXPECT_NE(r.out.find("          step          time            ke\n           [-]           [s]           [J]\n"
+                       "             0             0             0\n"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\n            10          0.02"), std::string::npos) << r.out;
