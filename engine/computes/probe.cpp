@@ -30,25 +30,23 @@ namespace {
 
 class Probe : public PointCompute {
  public:
-  Probe(const std::string& id, const Params& p) : PointCompute(id, "probe", p), field_(p.string("field")) {
+  Probe(const std::string& id, const Params& p)
+      : PointCompute(id, "probe", p), field_(p.string("field")),
+        unit_(field_ == "pressure" ? "Pa" : field_ == "velocity" ? "m/s" : "kg/m^3") {
     // Names: the label itself for a scalar field when labels are given (a sensor's name),
     // else the field's symbol and the point's number; '.' is thermo's separator, hence "_vx".
-    const std::string unit = field_ == "pressure" ? "Pa" : field_ == "velocity" ? "m/s" : "kg/m^3";
     for (const auto& label : labels_) {
       if (field_ == "velocity") {
-        for (const char* c : {"vx", "vy", "vz"}) {
+        for (const char* c : {"vx", "vy", "vz"})
           names_.push_back(labelled_ ? fmt::format("{}_{}", label, c) : fmt::format("{}{}", c, label));
-          units_.push_back(unit);
-        }
       } else {
         names_.push_back(labelled_ ? label : (field_ == "pressure" ? "p" : "rho") + label);
-        units_.push_back(unit);
       }
     }
   }
 
   std::vector<std::string> names() const override { return names_; }
-  std::vector<std::string> units() const override { return units_; }
+  std::vector<std::string> units() const override { return std::vector<std::string>(names_.size(), unit_); }
   bool runs_distributed() const override { return true; }  // each point measured by the rank whose box holds it
   bool reads_pressure() const { return field_ == "pressure"; }
 
@@ -98,8 +96,8 @@ class Probe : public PointCompute {
  private:
   const char* inside_solid_reads() const override { return "it reads 0"; }
 
-  std::string field_;
-  std::vector<std::string> names_, units_;
+  std::string field_, unit_;
+  std::vector<std::string> names_;
 };
 
 }  // namespace
