@@ -41,7 +41,8 @@ TEST(Thermo, EveryComputeStyleDeclaresAUnitPerValue) {
       for (const auto& unit : units) {
         EXPECT_FALSE(unit.empty()) << info.name;
         // The reference says it: "... (m/s)", "... (-, relative to rho0)".
-        EXPECT_NE(info.values.find("(" + unit), std::string::npos) << info.name << ": " << unit << " in " << info.values;
+        EXPECT_NE(info.values.find("(" + unit), std::string::npos)
+            << info.name << ": " << unit << " in " << info.values;
       }
     }
   }
@@ -49,14 +50,17 @@ TEST(Thermo, EveryComputeStyleDeclaresAUnitPerValue) {
 }
 
 TEST(Thermo, ALabelledSinglePointKeepsItsName) {
-  auto columns = [](const std::string& style, GivenParams p) { return styles().make_compute("c", style, p)->columns(); };
+  auto columns = [](const std::string& style, GivenParams p) {
+    return styles().make_compute("c", style, p)->columns();
+  };
   const Points one = {{0, 0, 0}}, two = {{0, 0, 0}, {1, 1, 1}};
   EXPECT_EQ(columns("count", {}), (Names{"c"}));
   EXPECT_EQ(columns("speed", {}), (Names{"c.max", "c.avg"}));
   EXPECT_EQ(columns("probe", {{"points", one}}), (Names{"c"}));
   EXPECT_EQ(columns("probe", {{"points", one}, {"labels", Names{"floor"}}}), (Names{"c.floor"}));
   EXPECT_EQ(columns("probe", {{"points", two}}), (Names{"c.p1", "c.p2"}));
-  EXPECT_EQ(columns("probe", {{"points", one}, {"field", std::string("velocity")}}), (Names{"c.vx1", "c.vy1", "c.vz1"}));
+  EXPECT_EQ(columns("probe", {{"points", one}, {"field", std::string("velocity")}}),
+            (Names{"c.vx1", "c.vy1", "c.vz1"}));
   EXPECT_EQ(columns("gauge", {{"points", one}}), (Names{"c"}));
   EXPECT_EQ(columns("gauge", {{"points", one}, {"labels", Names{"left"}}}), (Names{"c.left"}));
 }
@@ -69,9 +73,11 @@ TEST(Thermo, ColumnsSayTheirUnitsOnTheConsoleAndInTheCsv) {
                    "pbf.fix('pbf', 'pbf', {})\npbf.compute('ke', 'kinetic_energy')\n"
                    "pbf.compute('p', 'probe', {points = {{0.03, 0.03, 0.01}}, labels = {'floor'}})\n"
                    "pbf.compute('g', 'gauge', {points = {{0.03, 0.03, 0}}})\n"
-                   "pbf.compute('rho', 'probe', {points = {{0.03, 0.03, 0.01}}, labels = {'floor'}, field = 'density'})\n"
+                   "pbf.compute('rho', 'probe', {points = {{0.03, 0.03, 0.01}}, labels = {'floor'}, "
+                   "field = 'density'})\n"
                    "print('rho', math.type(pbf.value('rho')))\n"
-                   "pbf.thermo{every = 1, columns = {'step', 'time', 'ke', 'p.floor', 'g'}, csv = var.dir .. '/t.csv'}\n"
+                   "pbf.thermo{every = 1, columns = {'step', 'time', 'ke', 'p.floor', 'g'}, "
+                   "csv = var.dir .. '/t.csv'}\n"
                    "pbf.run(1)\n"
                    "pbf.thermo{every = 1, columns = {'step', 'g'}, csv = var.dir .. '/t.csv'}\npbf.run(1)\n");
   const auto r = test::run_engine("run " + (dir / "a.lua").string() + " -v dir=" + dir.path().string());
