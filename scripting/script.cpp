@@ -158,8 +158,7 @@ int l_thermo(lua_State* L) {
   // Range-checked here, as the conversion to int below would wrap a large negative count.
   if (every < 0) throw Error(fmt::format("thermo: 'every' must be >= 0, got {}", every));
   if (every > 1000000000) throw Error("pbf.thermo: 'every' is too large");
-  S.sim.thermo().configure(static_cast<int>(every), columns, csv);
-  S.sim.thermo().check(S.sim);
+  S.sim.thermo().configure(S.sim, static_cast<int>(every), columns, csv);
   return 0;
 }
 

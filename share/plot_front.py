@@ -55,7 +55,8 @@ def read_csv(path, time_col, front_col):
     try:
         with open(path, newline="") as f:
             reader = csv.reader(f)  # keep file line numbers for error messages
-            rows = [(reader.line_num, r) for r in reader if any(c.strip() for c in r)]
+            rows = [(reader.line_num, r) for r in reader
+                    if any(c.strip() for c in r) and not r[0].startswith("#")]  # "# units: ..."
     except OSError as e:
         fail(f"cannot read {path}: {e.strerror}")
     except (csv.Error, UnicodeDecodeError) as e:

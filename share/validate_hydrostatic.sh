@@ -49,7 +49,7 @@ order = ["one-sided, wall density, 8k", "one-sided, wall density, 30k", "two-sid
          "XSPH c 0.05, 8k", "one-sided, no wall density, 8k",
          "two-sided, no wall density, 8k"]
 for name in order:
-    rows = list(csv.DictReader(open(os.path.join(work, name + ".csv"))))
+    rows = list(csv.DictReader(l for l in open(os.path.join(work, name + ".csv")) if not l.startswith("#")))
     spacing = None
     for line in open(os.path.join(work, name + ".log")):
         if line.startswith("hydrostatic:"):

@@ -172,7 +172,8 @@ TEST(LogFile, HoldsAHeaderThenWhatTheRunPrinted) {
   EXPECT_EQ(printed.substr(0, warning) + printed.substr(warning + r.err.size()), r.out);
   EXPECT_NE(r.out.find("Wrote:\n  log: log.pbfengine\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("from Lua\t42\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("          step          time            ke\n             0             0             0\n"),
+  EXPECT_NE(r.out.find("          step          time            ke\n           [-]           [s]           [J]\n"
+                       "             0             0             0\n"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\n            10          0.02"), std::string::npos) << r.out;

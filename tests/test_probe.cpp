@@ -229,8 +229,22 @@ TEST(Probe, BadInputIsOneClearError) {
 
   Simulation sim;
   block(sim, {0, 0, 0}, {0.1, 0.1, 0.1}, {0, 0, 0}, {0.05, 0.05, 0.05}, 0.01);
-  sim.add_compute(styles().make_compute("far", "gauge", {{"points", Points{{0.05, 0.05, 0}, {0.05, 0.2, 0}}}}));
-  EXPECT_ERROR_NAMING(values(sim, "far"), "compute 'far' (gauge): parameter 'points'", "point 2 (0.05, 0.2, 0) is outside");
+  // A point outside the domain is refused as the compute is added; one outside a domain set
+  // later when it is evaluated and when a run starts.
+  EXPECT_ERROR_NAMING(
+      sim.add_compute(styles().make_compute("far", "gauge", {{"points", Points{{0.05, 0.05, 0}, {0.05, 0.2, 0}}}})),
+      "compute 'far' (gauge): parameter 'points'", "point 2 (0.05, 0.2, 0) is outside the domain (0, 0, 0) to");
+  EXPECT_EQ(sim.find_compute("far"), nullptr);
+  EXPECT_ERROR_NAMING(sim.add_compute(styles().make_compute("far", "probe", {{"points", Points{{0.05, 0.05, 0.2}}},
+                                                                             {"labels", Names{"top"}}})),
+                      "compute 'far' (probe): parameter 'points'", "point 'top' (0.05, 0.05, 0.2) is outside");
+  {
+    Simulation later;
+    later.add_compute(styles().make_compute("g", "gauge", {{"points", Points{{0.05, 0.2, 0}}}}));  // no domain yet
+    block(later, {0, 0, 0}, {0.1, 0.1, 0.1}, {0, 0, 0}, {0.05, 0.05, 0.05}, 0.01);
+    EXPECT_ERROR_NAMING(values(later, "g"), "compute 'g' (gauge): parameter 'points'", "point 1 (0.05, 0.2, 0)");
+    EXPECT_ERROR_NAMING(later.run(1), "compute 'g' (gauge): parameter 'points'", "point 1 (0.05, 0.2, 0)");
+  }
   sim.add_compute(styles().make_compute("p", "probe", {{"points", Points{{0.02, 0.02, 0.02}}}}));
   EXPECT_ERROR_NAMING(values(sim, "p"), "compute 'p' (probe): parameter 'field'", "no fix keeps a pressure field");
 
@@ -251,6 +265,34 @@ TEST(Probe, BadInputIsOneClearError) {
   sim.remove_fix("s");
   sim.add_fix(sample({{"computes", Names{"density"}}, {"interval", 0.1}, {"file", file}}));
   EXPECT_ERROR_NAMING(sim.run(1), "parameter 'computes'", "one value per particle");
+}
+
+TEST(Probe, APointDeepInASolidIsWarnedAboutOnce) {
+  // A block of wall from x = 0.06 m (h = 0.02 m): a point 0.03 m inside reads 0 for ever and
+  // is warned about as the run starts, once; one 0.005 m inside is a sensor on the wall (it
+  // reads the particles in front) and is not. Once the solid's map is built, a compute
+  // defined later is warned about where it is defined.
+  Simulation sim;
+  block(sim, {0, 0, 0}, {0.1, 0.1, 0.1}, {0, 0, 0}, {0.05, 0.05, 0.05}, 0.01);
+  sim.add_fix(styles().make_fix("pbf", "pbf", {}));
+  sim.add_fix(styles().make_fix("wall", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.06, -1, -1}},
+                                                   {"hi", Vec3{1, 1, 1}}}));
+  sim.add_compute(styles().make_compute("p", "probe", {{"points", Points{{0.03, 0.03, 0.03}, {0.09, 0.05, 0.05},
+                                                                         {0.065, 0.05, 0.05}}},
+                                                       {"labels", Names{"fluid", "deep", "face"}}}));
+  test::LogCapture log;
+  sim.run(1);
+  EXPECT_EQ(log.count("compute 'p' (probe): point 'deep' (0.09, 0.05, 0.05) lies inside solid 'wall', more than a "
+                      "kernel radius behind its surface, where no particle comes: it reads 0"),
+            1)
+      << log.text();
+  EXPECT_EQ(log.count("'face'"), 0) << log.text();
+  EXPECT_EQ(values(sim, "p")[1], 0.0);
+  sim.run(1);
+  EXPECT_EQ(log.count("lies inside solid"), 1) << log.text();
+  sim.add_compute(styles().make_compute("g", "gauge", {{"points", Points{{0.09, 0.05, 0}}}}));
+  EXPECT_EQ(log.count("compute 'g' (gauge): point 1 (0.09, 0.05, 0) lies inside solid 'wall'"), 1) << log.text();
+  EXPECT_EQ(log.count("the depth it reads is measured from inside the solid"), 1) << log.text();
 }
 
 TEST(Sample, RowsLandOnTheIntervalGrid) {

@@ -12,6 +12,7 @@ class Density : public Compute {
  public:
   Density(const std::string& id, const Params&) : Compute(id, "density") {}
   std::vector<std::string> names() const override { return {}; }
+  std::vector<std::string> units() const override { return {}; }  // (its per-particle values: kg/m^3)
   void evaluate(Simulation&, std::vector<double>& values) override { values.clear(); }
   bool per_particle() const override { return true; }
   // In a distributed run every rank gets every particle's value (a table of all of them).
@@ -31,7 +32,8 @@ class Density : public Compute {
 
 void register_compute_density(StyleRegistry& r) {
   r.add({"density", StyleKind::compute, "per-particle density the solver uses (kg/m^3): wcsph's density, else the SPH sum with walls", {}, nullptr,
-         make_compute<Density>()});
+         make_compute<Density>(),
+         "one per particle, the density (kg/m^3)"});
 }
 
 }  // namespace pbf

@@ -16,6 +16,7 @@ class DensityError : public Compute {
  public:
   DensityError(const std::string& id, const Params&) : Compute(id, "density_error") {}
   std::vector<std::string> names() const override { return {"avg", "max", "compression"}; }
+  std::vector<std::string> units() const override { return {"-", "-", "-"}; }
   bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const real* rho = sim.solver_density();
@@ -38,7 +39,8 @@ class DensityError : public Compute {
 void register_compute_density_error(StyleRegistry& r) {
   r.add({"density_error", StyleKind::compute,
          "rho/rho0 - 1: avg, max, and compression = mean of max(rho/rho0 - 1, 0)", {}, nullptr,
-         make_compute<DensityError>()});
+         make_compute<DensityError>(),
+         "`avg`, `max`, `compression` (-, relative to rho0)"});
 }
 
 }  // namespace pbf

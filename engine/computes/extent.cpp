@@ -14,6 +14,7 @@ class Extent : public Compute {
  public:
   Extent(const std::string& id, const Params&) : Compute(id, "extent") {}
   std::vector<std::string> names() const override { return {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}; }
+  std::vector<std::string> units() const override { return {"m", "m", "m", "m", "m", "m"}; }
   bool runs_distributed() const override { return true; }  // over every rank's
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
@@ -43,7 +44,8 @@ class Extent : public Compute {
 
 void register_compute_extent(StyleRegistry& r) {
   r.add({"extent", StyleKind::compute, "bounding box of the fluid: xmin, xmax, ymin, ymax, zmin, zmax (m)", {},
-         nullptr, make_compute<Extent>()});
+         nullptr, make_compute<Extent>(),
+         "`xmin`, `xmax`, `ymin`, `ymax`, `zmin`, `zmax` (m)"});
 }
 
 }  // namespace pbf

@@ -18,6 +18,7 @@ class Front : public Compute {
     axis_ = p.string("axis")[0] - 'x';
   }
   std::vector<std::string> names() const override { return {"value"}; }
+  std::vector<std::string> units() const override { return {"m"}; }
   bool runs_distributed() const override { return true; }  // the percentile of every rank's particles
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
@@ -40,7 +41,8 @@ void register_compute_front(StyleRegistry& r) {
          "a high percentile of one coordinate (m), e.g. a dam-break surge front",
          {ParamSpec{"axis", ParamType::String, std::string("x"), "", "the coordinate"}.one_of({"x", "y", "z"}),
           ParamSpec{"percentile", ParamType::Real, 99.0, "%", "percentile of the particles' coordinate"}.within(0, 100)},
-         nullptr, make_compute<Front>()});
+         nullptr, make_compute<Front>(),
+         "one, the coordinate (m)"});
 }
 
 }  // namespace pbf

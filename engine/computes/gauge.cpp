@@ -21,8 +21,8 @@
 // any number of ranks (each sample is measured by the rank whose box holds it).
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
+#include "engine/computes/point_compute.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
@@ -33,18 +33,18 @@ namespace pbf {
 
 namespace {
 
-class Gauge : public Compute {
+class Gauge : public PointCompute {
  public:
-  Gauge(const std::string& id, const Params& p) : Compute(id, "gauge"), points_(p.points("points")) {
-    const auto labels = point_labels(p, points_.size());
-    for (const auto& label : labels) names_.push_back(p.has("labels") ? label : "h" + label);
+  Gauge(const std::string& id, const Params& p) : PointCompute(id, "gauge", p) {
+    for (const auto& label : labels_) names_.push_back(labelled_ ? label : "h" + label);
   }
 
   std::vector<std::string> names() const override { return names_; }
+  std::vector<std::string> units() const override { return std::vector<std::string>(names_.size(), "m"); }
   bool runs_distributed() const override { return true; }  // each sample measured by the rank whose box holds it
 
   void evaluate(Simulation& sim, std::vector<double>& values) override {
-    check_points_inside(points_, sim.domain(), fmt::format("compute '{}' ({})", id(), style()));
+    check_inside(sim.domain());  // a domain changed since the last check
     const auto& P = sim.particles();
     values.assign(points_.size(), 0.0);
     if (sim.global_count() == 0) return;  // all dry (and no mean mass to take a spacing from)
@@ -115,7 +115,10 @@ class Gauge : public Compute {
     return z0 + static_cast<double>(i) * ((top - z0) / static_cast<double>(count));
   }
 
-  Points points_;
+  const char* inside_solid_reads() const override {
+    return "the depth it reads is measured from inside the solid";
+  }
+
   std::vector<std::string> names_;
 };
 
@@ -129,7 +132,8 @@ void register_compute_gauge(StyleRegistry& r) {
            "the foot {x, y, z} of each gauge line, which runs up to the domain top"},
           ParamSpec{"labels", ParamType::StringList, std::nullopt, "",
                     "one name per gauge (default: the values are h1, h2, ..)", true}},
-         nullptr, make_compute<Gauge>()});
+         nullptr, make_compute<Gauge>(),
+         "one per point: `h1`, `h2`, ..., or `LABEL` with `labels` (m)"});
 }
 
 }  // namespace pbf

@@ -14,6 +14,7 @@ class Iterations : public Compute {
  public:
   Iterations(const std::string& id, const Params&) : Compute(id, "iterations") {}
   std::vector<std::string> names() const override { return {"last", "avg", "error"}; }
+  std::vector<std::string> units() const override { return {"-", "-", "-"}; }
   bool runs_distributed() const override { return true; }  // the solver's report is the same on every rank
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     auto& report = sim.solver_report();
@@ -34,7 +35,8 @@ void register_compute_iterations(StyleRegistry& r) {
   r.add({"iterations", StyleKind::compute,
          "constraint iterations: last (of the last step), avg (since the previous evaluation), error (the mean "
          "compression pbf measured in the last iteration, before its correction)",
-         {}, nullptr, make_compute<Iterations>()});
+         {}, nullptr, make_compute<Iterations>(),
+         "`last`, `avg` (-, iterations), `error` (-, relative to rho0)"});
 }
 
 }  // namespace pbf

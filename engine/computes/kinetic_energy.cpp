@@ -11,6 +11,7 @@ class KineticEnergy : public Compute {
  public:
   KineticEnergy(const std::string& id, const Params&) : Compute(id, "kinetic_energy") {}
   std::vector<std::string> names() const override { return {"value"}; }
+  std::vector<std::string> units() const override { return {"J"}; }
   bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
@@ -25,7 +26,8 @@ class KineticEnergy : public Compute {
 
 void register_compute_kinetic_energy(StyleRegistry& r) {
   r.add({"kinetic_energy", StyleKind::compute, "total kinetic energy, sum 1/2 m |v|^2 (J)", {}, nullptr,
-         make_compute<KineticEnergy>()});
+         make_compute<KineticEnergy>(),
+         "one, the energy (J)"});
 }
 
 }  // namespace pbf

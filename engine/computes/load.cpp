@@ -17,6 +17,7 @@ class Load : public Compute {
  public:
   Load(const std::string& id, const Params& p) : Compute(id, "load"), solid_(p.string("solid")), about_(p.vec3("about")) {}
   std::vector<std::string> names() const override { return {"fx", "fy", "fz", "tx", "ty", "tz"}; }
+  std::vector<std::string> units() const override { return {"N", "N", "N", "N m", "N m", "N m"}; }
   bool runs_distributed() const override { return true; }  // the solid's load is every rank's
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const SolidBody* body = nullptr;
@@ -49,7 +50,8 @@ void register_compute_load(StyleRegistry& r) {
          {{"solid", ParamType::String, std::nullopt, "", "the solid's fix id"},
           ParamSpec{"about", ParamType::Vector3, Vec3{0, 0, 0}, "m", "the point torques are taken about"}
               .magnitude_at_most(1e6)},
-         nullptr, make_compute<Load>()});
+         nullptr, make_compute<Load>(),
+         "`fx`, `fy`, `fz` (N), `tx`, `ty`, `tz` (N m)"});
 }
 
 }  // namespace pbf

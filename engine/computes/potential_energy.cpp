@@ -14,6 +14,7 @@ class PotentialEnergy : public Compute {
  public:
   PotentialEnergy(const std::string& id, const Params& p) : Compute(id, "potential_energy"), g_(p.vec3("acceleration")) {}
   std::vector<std::string> names() const override { return {"value"}; }
+  std::vector<std::string> units() const override { return {"J"}; }
   bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
@@ -34,7 +35,8 @@ void register_compute_potential_energy(StyleRegistry& r) {
          "total potential energy in uniform gravity, sum -m g . x (J)",
          {ParamSpec{"acceleration", ParamType::Vector3, Vec3{0, 0, -9.81}, "m/s^2",
                     "the gravity it is the potential of (give the gravity fix's)"}},
-         nullptr, make_compute<PotentialEnergy>()});
+         nullptr, make_compute<PotentialEnergy>(),
+         "one, the energy (J)"});
 }
 
 }  // namespace pbf

@@ -17,6 +17,7 @@
 // the fixed order of PointQuery, so the values have the same bits at any thread count.
 #include <fmt/format.h>
 
+#include "engine/computes/point_compute.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/registry/builtin_styles.hpp"
@@ -27,30 +28,30 @@ namespace pbf {
 
 namespace {
 
-class Probe : public Compute {
+class Probe : public PointCompute {
  public:
   Probe(const std::string& id, const Params& p)
-      : Compute(id, "probe"), points_(p.points("points")), field_(p.string("field")) {
-    const auto labels = point_labels(p, points_.size());
-    const bool labelled = p.has("labels");
+      : PointCompute(id, "probe", p), field_(p.string("field")),
+        unit_(field_ == "pressure" ? "Pa" : field_ == "velocity" ? "m/s" : "kg/m^3") {
     // Names: the label itself for a scalar field when labels are given (a sensor's name),
     // else the field's symbol and the point's number; '.' is thermo's separator, hence "_vx".
-    for (const auto& label : labels) {
+    for (const auto& label : labels_) {
       if (field_ == "velocity") {
         for (const char* c : {"vx", "vy", "vz"})
-          names_.push_back(labelled ? fmt::format("{}_{}", label, c) : fmt::format("{}{}", c, label));
+          names_.push_back(labelled_ ? fmt::format("{}_{}", label, c) : fmt::format("{}{}", c, label));
       } else {
-        names_.push_back(labelled ? label : (field_ == "pressure" ? "p" : "rho") + label);
+        names_.push_back(labelled_ ? label : (field_ == "pressure" ? "p" : "rho") + label);
       }
     }
   }
 
   std::vector<std::string> names() const override { return names_; }
+  std::vector<std::string> units() const override { return std::vector<std::string>(names_.size(), unit_); }
   bool runs_distributed() const override { return true; }  // each point measured by the rank whose box holds it
   bool reads_pressure() const { return field_ == "pressure"; }
 
   void evaluate(Simulation& sim, std::vector<double>& values) override {
-    check_points_inside(points_, sim.domain(), fmt::format("compute '{}' ({})", id(), style()));
+    check_inside(sim.domain());  // a domain changed since the last check
     const auto& P = sim.particles();
     // The density first: its sums may rebuild the ghosts, which moves every array; the point
     // cells then find them current. Pointers into the particles only after both.
@@ -93,8 +94,9 @@ class Probe : public Compute {
   }
 
  private:
-  Points points_;
-  std::string field_;
+  const char* inside_solid_reads() const override { return "it reads 0"; }
+
+  std::string field_, unit_;
   std::vector<std::string> names_;
 };
 
@@ -116,7 +118,9 @@ void register_compute_probe(StyleRegistry& r) {
               .one_of({"pressure", "velocity", "density"}),
           ParamSpec{"labels", ParamType::StringList, std::nullopt, "",
                     "one name per point (default: the values are p1.., rho1.., vx1, vy1, vz1, ..)", true}},
-         nullptr, make_compute<Probe>()});
+         nullptr, make_compute<Probe>(),
+         "one per point: `p1`, `p2`, ... (Pa), `rho1`, ... (kg/m^3) or `vx1`, `vy1`, `vz1`, ... (m/s); with "
+         "`labels`, `LABEL` (`LABEL_vx`, ...)"});
 }
 
 }  // namespace pbf

@@ -15,6 +15,7 @@ class Speed : public Compute {
  public:
   Speed(const std::string& id, const Params&) : Compute(id, "speed") {}
   std::vector<std::string> names() const override { return {"max", "avg"}; }
+  std::vector<std::string> units() const override { return {"m/s", "m/s"}; }
   bool runs_distributed() const override { return true; }
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
@@ -34,7 +35,8 @@ class Speed : public Compute {
 }  // namespace
 
 void register_compute_speed(StyleRegistry& r) {
-  r.add({"speed", StyleKind::compute, "particle speed |v|: max and avg (m/s)", {}, nullptr, make_compute<Speed>()});
+  r.add({"speed", StyleKind::compute, "particle speed |v|: max and avg (m/s)", {}, nullptr, make_compute<Speed>(),
+         "`max`, `avg` (m/s)"});
 }
 
 }  // namespace pbf

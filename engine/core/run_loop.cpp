@@ -60,6 +60,8 @@ void RunLoop::prepare() {
       }
     }
   }
+  // The computes against the scene the run has: a domain set after them, solids' maps built.
+  for (const auto& c : sim_.computes_) c->check_scene(sim_);
   const double h = sim_.h_;
   full_neighborhood_ = 4.0 / 3.0 * M_PI * h * h * h * sim_.rest_density_ / P.mean_mass();
 

@@ -27,6 +27,7 @@ void Simulation::set_domain(const Domain& domain) {
       throw Error(fmt::format("domain: hi must exceed lo along every axis (axis {}: lo {}, hi {})", "xyz"[a],
                               domain.lo[a], domain.hi[a]));
   domain_ = domain;
+  domain_set_ = true;
   positions_changed();
 }
 
@@ -192,6 +193,7 @@ void Simulation::add_compute(std::unique_ptr<Compute> compute) {
   check_id(compute->id(), "compute");
   if (find_compute(compute->id()))
     throw Error(fmt::format("a compute with id '{}' exists already", compute->id()));
+  if (domain_set_) compute->check_scene(*this);  // a point outside it named where the compute is defined
   computes_.push_back(std::move(compute));
 }
 

@@ -51,6 +51,8 @@ class Simulation {
   const Particles& particles() const { return particles_; }
   const Domain& domain() const { return domain_; }
   void set_domain(const Domain& domain);
+  // Whether a script, scene or restart has set the domain (else it is the unit cube).
+  bool domain_set() const { return domain_set_; }
   double kernel_radius() const { return h_; }
   void set_kernel_radius(double h);
   const Kernels& kernels() const { return kernels_; }
@@ -88,6 +90,7 @@ class Simulation {
   void remove_fix(const std::string& id);
   Fix* find_fix(const std::string& id) const;
   const std::vector<std::unique_ptr<Fix>>& fixes() const { return fixes_; }
+  // Checks the compute against the scene (Compute::check_scene) when the domain is set.
   void add_compute(std::unique_ptr<Compute> compute);
   void remove_compute(const std::string& id);
   Compute* find_compute(const std::string& id) const;
@@ -183,6 +186,7 @@ class Simulation {
 
   Particles particles_;
   Domain domain_;
+  bool domain_set_ = false;
   double h_ = 0, dt_ = 0, rest_density_ = 1000;
   Kernels kernels_{1.0};
   int reorder_every_ = 20;

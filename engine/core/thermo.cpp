@@ -16,14 +16,43 @@
 namespace pbf {
 
 namespace {
-const std::vector<std::string> kBuiltinColumns = {"step", "time", "dt", "particles"};
-// Columns at least 14 wide, and always a space before a long name.
-std::size_t width(const std::string& column) { return std::max<std::size_t>(14, column.size() + 2); }
+
+// A column thermo can show: its name and unit, and the compute value it shows (none for the
+// simulation's own step, time, dt and particles).
+struct Column {
+  std::string name, unit;
+  Compute* compute = nullptr;
+  std::size_t value = 0;
+};
+
+// Every column thermo can show now: the simulation's own, then each compute's named values.
+std::vector<Column> available(const Simulation& sim) {
+  std::vector<Column> out = {{"step", "-"}, {"time", "s"}, {"dt", "s"}, {"particles", "-"}};
+  for (const auto& c : sim.computes()) {
+    if (c->per_particle()) continue;
+    const auto names = c->columns();
+    const auto units = c->units();
+    for (std::size_t k = 0; k < names.size(); ++k) out.push_back({names[k], units.at(k), c.get(), k});
+  }
+  return out;
 }
 
-void Thermo::configure(int every, std::vector<std::string> columns, const std::string& csv_path) {
+const Column& find_column(const std::vector<Column>& columns, const std::string& name) {
+  for (const auto& c : columns)
+    if (c.name == name) return c;
+  throw Error(fmt::format("thermo: column '{}' names no compute value", name));
+}
+
+// Columns at least 14 wide, and always a space before a long name.
+std::size_t width(const std::string& column) { return std::max<std::size_t>(14, column.size() + 2); }
+
+}  // namespace
+
+void Thermo::configure(const Simulation& sim, int every, std::vector<std::string> columns,
+                       const std::string& csv_path) {
   if (every < 0) throw Error(fmt::format("thermo: 'every' must be >= 0, got {}", every));
   if (columns.empty()) throw Error("thermo: 'columns' must name at least one column");
+  check(sim, columns);
   every_ = every;
   const bool same_columns = columns == columns_;
   columns_ = std::move(columns);
@@ -36,60 +65,62 @@ void Thermo::configure(int every, std::vector<std::string> columns, const std::s
       if (!parent.empty()) std::filesystem::create_directories(parent, ec);
       csv_.open(csv_path_);
       if (!csv_) throw Error(fmt::format("thermo: cannot write CSV file '{}'", csv_path_));
-      write_csv(fmt::format("{}\n", fmt::join(columns_, ",")));
+      write_csv_header(sim);
     }
-  } else if (csv_.is_open() && !same_columns) {  // new columns: a new header row
-    write_csv(fmt::format("{}\n", fmt::join(columns_, ",")));
+  } else if (csv_.is_open() && !same_columns) {  // new columns: new header lines
+    write_csv_header(sim);
   }
 }
 
 std::vector<std::string> Thermo::valid_columns(const Simulation& sim) {
-  std::vector<std::string> valid = kBuiltinColumns;
-  for (const auto& c : sim.computes()) {
-    if (c->per_particle()) continue;
-    const auto names = c->names();
-    if (names.size() == 1) valid.push_back(c->id());
-    else
-      for (const auto& n : names) valid.push_back(c->id() + "." + n);
-  }
+  std::vector<std::string> valid;
+  for (const auto& c : available(sim)) valid.push_back(c.name);
   return valid;
 }
 
-void Thermo::check(const Simulation& sim) const {
+void Thermo::check(const Simulation& sim, const std::vector<std::string>& columns) {
   const auto valid = valid_columns(sim);
-  for (const auto& col : columns_)
+  for (const auto& col : columns)
     if (std::find(valid.begin(), valid.end(), col) == valid.end())
       throw Error(fmt::format("thermo: unknown column '{}'{}; valid columns now: {}", col, did_you_mean(col, valid),
                               fmt::join(valid, ", ")));
 }
 
+std::vector<std::string> Thermo::units(const Simulation& sim) const {
+  const auto all = available(sim);
+  std::vector<std::string> out;
+  for (const auto& col : columns_) out.push_back(find_column(all, col).unit);
+  return out;
+}
+
 std::vector<double> Thermo::values(Simulation& sim) const {
+  const auto all = available(sim);
   std::map<std::string, std::vector<double>> evaluated;  // each compute once per line
   std::vector<double> out;
-  for (const auto& col : columns_) {
-    if (col == "step") out.push_back(static_cast<double>(sim.step()));
-    else if (col == "time") out.push_back(sim.time());
-    else if (col == "dt") out.push_back(sim.timestep());
-    else if (col == "particles") out.push_back(static_cast<double>(sim.global_count()));
+  for (const auto& name : columns_) {
+    const Column& col = find_column(all, name);
+    if (name == "step") out.push_back(static_cast<double>(sim.step()));
+    else if (name == "time") out.push_back(sim.time());
+    else if (name == "dt") out.push_back(sim.timestep());
+    else if (name == "particles") out.push_back(static_cast<double>(sim.global_count()));
     else {
-      const auto dot = col.find('.');
-      const std::string id = col.substr(0, dot);
-      Compute* compute = sim.find_compute(id);
-      if (!compute) throw Error(fmt::format("thermo: column '{}' names no compute", col));
-      auto it = evaluated.find(id);
+      auto it = evaluated.find(col.compute->id());
       if (it == evaluated.end()) {
         std::vector<double> v;
-        compute->evaluate(sim, v);
-        it = evaluated.emplace(id, std::move(v)).first;
+        col.compute->evaluate(sim, v);
+        it = evaluated.emplace(col.compute->id(), std::move(v)).first;
       }
-      const auto names = compute->names();
-      std::size_t k = 0;
-      if (dot != std::string::npos)
-        k = static_cast<std::size_t>(std::find(names.begin(), names.end(), col.substr(dot + 1)) - names.begin());
-      out.push_back(it->second.at(k));
+      out.push_back(it->second.at(col.value));
     }
   }
   return out;
+}
+
+void Thermo::write_csv_header(const Simulation& sim) {
+  const auto u = units(sim);
+  std::string line = "# units:";
+  for (std::size_t k = 0; k < columns_.size(); ++k) line += fmt::format("{} {} {}", k ? "," : "", columns_[k], u[k]);
+  write_csv(fmt::format("{}\n{}\n", line, fmt::join(columns_, ",")));
 }
 
 // A line goes out whole or the run stops: a full disk must not leave a CSV cut mid-line
@@ -103,9 +134,15 @@ void Thermo::write_csv(const std::string& text) {
 void Thermo::start_run(Simulation& sim) {
   if (every_ <= 0) return;
   check(sim);
-  std::string header;
-  for (const auto& c : columns_) header += fmt::format("{:>{}}", c, width(c));
-  spdlog::info("{}", header);
+  // The names, and under each its unit in brackets.
+  const auto u = units(sim);
+  std::string names, units_line;
+  for (std::size_t k = 0; k < columns_.size(); ++k) {
+    names += fmt::format("{:>{}}", columns_[k], width(columns_[k]));
+    units_line += fmt::format("{:>{}}", "[" + u[k] + "]", width(columns_[k]));
+  }
+  spdlog::info("{}", names);
+  spdlog::info("{}", units_line);
   if (csv_.is_open()) sim.outputs().wrote("thermo CSV", csv_path_);
   if (sim.step() % every_ == 0) output(sim);
 }

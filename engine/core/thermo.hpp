@@ -1,6 +1,8 @@
 #pragma once
 // Thermo output: every K steps one line of the columns a script asks for (step, time, dt,
-// particles, and compute values "id" or "id.name"), logged and optionally written to CSV.
+// particles, and compute values "id" or "id.name", Compute::columns), logged under a header
+// of names and one of units, and optionally written to CSV (a "# units: ..." comment line,
+// then a header row of names).
 #include <cstdint>
 #include <fstream>
 #include <string>
@@ -12,21 +14,27 @@ class Simulation;
 
 class Thermo {
  public:
-  void configure(int every, std::vector<std::string> columns, const std::string& csv_path);
+  // Checks the columns against the computes defined now, then (re)opens the CSV file.
+  void configure(const Simulation& sim, int every, std::vector<std::string> columns, const std::string& csv_path);
   int every() const { return every_; }
   const std::vector<std::string>& columns() const { return columns_; }
 
   // Every name thermo columns may use now; a column not in it is an error.
   static std::vector<std::string> valid_columns(const Simulation& sim);
-  void check(const Simulation& sim) const;
+  void check(const Simulation& sim) const { check(sim, columns_); }
+  // The unit of each column ("-" for a count or a ratio), in order.
+  std::vector<std::string> units(const Simulation& sim) const;
 
-  void start_run(Simulation& sim);  // header line; a line for the current step if due
+  void start_run(Simulation& sim);  // header lines; a line for the current step if due
   void end_of_step(Simulation& sim);
   // The values of the columns now.
   std::vector<double> values(Simulation& sim) const;
 
  private:
+  static void check(const Simulation& sim, const std::vector<std::string>& columns);
   void output(Simulation& sim);
+  // The comment line of units and the row of names that start a CSV (and each new set of columns).
+  void write_csv_header(const Simulation& sim);
   void write_csv(const std::string& text);
 
   int every_ = 0;

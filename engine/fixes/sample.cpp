@@ -126,10 +126,7 @@ class Sample : public Fix {
         throw Error(fmt::format("parameter 'computes': compute '{}' ({}) gives one value per particle, not named "
                                 "values",
                                 id, c->style()));
-      const auto names = c->names();
-      if (names.size() == 1) header += "," + id;
-      else
-        for (const auto& name : names) header += fmt::format(",{}.{}", id, name);
+      for (const auto& column : c->columns()) header += "," + column;
     }
     return header;
   }

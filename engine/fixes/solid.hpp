@@ -35,6 +35,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   std::uint64_t surface_version() const override { return surface_version_; }
   bool fluid_inside() const override { return fluid_inside_; }
   std::array<double, 6> load() const override { return load_; }
+  std::optional<double> depth_in_wall(const std::array<double, 3>& point) const override;
   void record_push(std::size_t i, const real momentum[3]) override {
     for (int c = 0; c < 3; ++c) push_[c][i] += momentum[c];
   }

@@ -195,6 +195,19 @@ void SolidFix::move_to(double t, bool within_step) {
   ++surface_version_;
 }
 
+// The map's distance into the fluid, negated; deep in the wall and far in the fluid the map
+// keeps only the side.
+std::optional<double> SolidFix::depth_in_wall(const std::array<double, 3>& point) const {
+  if (!built_ || motion_) return std::nullopt;
+  real d = 0;
+  switch (map_.distance(real(point[0]), real(point[1]), real(point[2]), d, nullptr)) {
+    case SolidMap::Where::wall: return INFINITY;
+    case SolidMap::Where::fluid: return -INFINITY;
+    case SolidMap::Where::near: break;
+  }
+  return -double(d);
+}
+
 // An obstacle thinner than the particle spacing lets particles through between its nodes.
 void SolidFix::check_thickness(double spacing) const {
   const double depth = map_.deepest();

@@ -3,6 +3,7 @@
 // coordinates) and which side of it the fluid is on. The `solid` fix implements it.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "engine/geometry/triangle_mesh.hpp"
@@ -27,6 +28,10 @@ class SolidBody {
   // What the fluid exerted on the solid, averaged over the last step: the force (N) and the
   // torque about the origin (N m), {fx, fy, fz, tx, ty, tz}.
   virtual std::array<double, 6> load() const { return {}; }
+  // How deep a point lies behind the surface, inside the wall (m; negative on the fluid side,
+  // infinite deep in the wall), where the solid stands now; nothing where that holds for no
+  // whole run: before the run that builds the solid's map, or for a solid that moves.
+  virtual std::optional<double> depth_in_wall(const std::array<double, 3>& /*point*/) const { return std::nullopt; }
 };
 
 }  // namespace pbf

@@ -85,6 +85,11 @@ std::string StyleRegistry::help(const std::string& style) const {
     throw Error(fmt::format("unknown style '{}'{}; 'pbfengine help' lists them", style, did_you_mean(style, names)));
   }
   std::string out = fmt::format("{} {}: {}\n", kind_name(info->kind), info->name, info->summary);
+  if (!info->values.empty()) {
+    std::string values = info->values;
+    std::erase(values, '`');
+    out += fmt::format("Values: {}\n", values);
+  }
   if (info->params.empty()) return out + "  (no parameters)\n";
   out += "Parameters (name, type, default, unit, range: description):\n";
   for (const auto& p : info->params)
@@ -110,6 +115,7 @@ std::string StyleRegistry::markdown_reference() const {
     for (const auto& s : styles_) {
       if (s.kind != kind) continue;
       out += fmt::format("\n### `{}`\n\n{}\n\n", s.name, s.summary);
+      if (!s.values.empty()) out += fmt::format("Values: {}.\n\n", cell(s.values));
       if (s.params.empty()) {
         out += "No parameters.\n";
         continue;

@@ -21,6 +21,9 @@ struct StyleInfo {
   std::vector<ParamSpec> params;
   std::function<std::unique_ptr<Fix>(const std::string& id, const Params&)> make_fix;
   std::function<std::unique_ptr<Compute>(const std::string& id, const Params&)> make_compute;
+  // A compute's values and their units, for the help and the reference (`name` in backticks):
+  // each instance's Compute::units() must appear in it (tests/test_probe.cpp checks).
+  std::string values = {};
 };
 
 class StyleRegistry {

@@ -10,12 +10,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <string>
-#include <vector>
 
-#include "engine/core/domain.hpp"
 #include "engine/core/real.hpp"
-#include "engine/registry/params.hpp"
 #include "engine/sph/neighbor_grid.hpp"
 
 namespace pbf {
@@ -62,14 +58,6 @@ class PointQuery {
   double h_, h2_;
 };
 
-// What the probe and gauge styles share about their points.
-// Throws unless every point lies inside the domain (a probe outside it would read nothing,
-// silently): "WHAT: parameter 'points': point K (x, y, z) is outside the domain ...".
-void check_points_inside(const Points& points, const Domain& domain, const std::string& what);
-// Refuses an empty point list, and labels that do not give one name per point, repeat a name,
-// or use characters other than letters, digits, '_' and '-' (a label is a CSV column and a
-// thermo name). With `p` lacking "labels": "1".."N".
-std::vector<std::string> point_labels(const Params& p, std::size_t points);
 // Whether a compute of the simulation samples the "pressure" field (a probe with field
 // "pressure"): pbf keeps that field only then (engine/computes/probe.cpp).
 bool computes_read_pressure(const Simulation& sim);

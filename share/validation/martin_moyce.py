@@ -94,7 +94,7 @@ def run(binary, n2, across, extra, work):
         sys.exit(f"martin_moyce.py: {' '.join(cmd)} failed:\n{done.stdout[-2000:]}{done.stderr[-2000:]}")
     s = A / across
     with open(csv_path) as f:
-        rows = list(csv.DictReader(f))
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))  # "# units: ..."
     T = [float(r["time"]) * scale for r in rows]
     front = [(float(r["front"]) + s / 2) / A for r in rows]
     far = [(float(r["far"]) + s / 2) / A for r in rows]

@@ -148,7 +148,8 @@ def column(engine, binary, particles, solver, work):
     if done.returncode != 0:
         raise RunFailed(f"{shlex.join(engine.commands[-1])} exited with status {done.returncode}: {last_line(done)}")
     with open(path) as f:
-        rows = [r for r in csv.DictReader(f) if WINDOW[0] - 1e-6 <= float(r["time"]) <= WINDOW[1] + 1e-6]
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))  # "# units: ..."
+                if WINDOW[0] - 1e-6 <= float(r["time"]) <= WINDOW[1] + 1e-6]
     if not rows:
         raise RunFailed(f"{path}: no thermo line between t = {WINDOW[0]} and {WINDOW[1]} s")
     return dict(compression=sum(float(r["err.compression"]) for r in rows) / len(rows),

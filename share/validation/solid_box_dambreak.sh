@@ -51,7 +51,8 @@ def map_build(walls):
 
 def column(walls):
     import csv
-    rows = [r for r in csv.DictReader(open(os.path.join(work, f"column_{walls}.csv"))) if float(r["time"]) >= 1]
+    lines = [l for l in open(os.path.join(work, f"column_{walls}.csv")) if not l.startswith("#")]  # "# units: ..."
+    rows = [r for r in csv.DictReader(lines) if float(r["time"]) >= 1]
     mean = lambda key: sum(float(r[key]) for r in rows) / len(rows)
     return mean("top"), mean("err.compression")
 print("| container | column height (m) | difference from box (spacings of 12.5 mm) | mean compression | relative to box |")

@@ -85,7 +85,7 @@ def run(binary, solver, dt, args, work):
     rows = []
     if os.path.exists(csv_path):
         with open(csv_path) as f:
-            rows = list(csv.DictReader(f))
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     if done.returncode != 0:
         message = next((line for line in done.stderr.splitlines() if "step" in line), done.stderr.strip())
         if not rows:

@@ -60,7 +60,7 @@ def main():
     args = ap.parse_args()
     try:
         with open(args.csv) as f:
-            rows = list(csv.DictReader(f))
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     except OSError as e:
         sys.exit(f"standing_wave.py: {args.csv}: {e.strerror}")
     if not rows or "in.left" not in rows[0] or "in.right" not in rows[0]:

@@ -2014,6 +2014,49 @@ def gen_cli_first_scenario(g):
         g.case(name, cmd, outcome, expect, setup)
 
 
+def gen_probes(g):
+    d = "{dir}"
+    scene = PBF_SCENE + [t % "" for t in PBF_PIPE.values()]
+    # A block of wall filling x > 0.06 m: a point at x = 0.09 lies 0.03 m inside it, more than h.
+    block = 'pbf.fix("block", "solid", {shape = "box", lo = {0.06, -1, -1}, hi = {1, 1, 1}})'
+
+    def case(name, comment, lines, outcome, expect):
+        text, target = lua_script(comment, lines)
+        g.file(f"{name}.lua", text)
+        g.case(name, f"run {d}/{name}.lua", outcome, expect.replace("LINE", f"{name}.lua:{target}:"))
+
+    g.section("Probe and gauge points outside the domain are refused at the pbf.compute line when the domain is "
+              "set (at the run's start when it is set later), naming the point; a point more than a kernel radius "
+              "inside a solid at rest (where it reads 0 for the whole run) is warned about once, naming the point "
+              "and the solid; one on the solid's face reads the particles in front and is accepted.")
+    case("probe_outside_domain", "a probe's second point beyond the domain's x = 0.1", scene + [
+        '@pbf.compute("p", "probe", {points = {{0.03, 0.03, 0.02}, {0.15, 0.03, 0.02}}})', "pbf.run(2)"],
+        "refused", "LINE && compute 'p' (probe) && point 2 (0.15, 0.03, 0.02) is outside the domain")
+    case("probe_labelled_outside_domain", "a single labelled probe point below the floor", scene + [
+        '@pbf.compute("p", "probe", {points = {{0.03, 0.03, -0.01}}, labels = {"floor"}})', "pbf.run(2)"],
+        "refused", "LINE && point 'floor' (0.03, 0.03, -0.01) is outside the domain")
+    case("gauge_outside_domain", "a gauge's foot beyond the domain's y = 0.1", scene + [
+        '@pbf.compute("g", "gauge", {points = {{0.03, 0.2, 0}}, labels = {"far"}})', "pbf.run(2)"],
+        "refused", "LINE && compute 'g' (gauge) && point 'far' (0.03, 0.2, 0) is outside the domain")
+    case("gauge_outside_later_domain", "a gauge defined before the domain, outside the domain set after it",
+         ['pbf.compute("g", "gauge", {points = {{0.03, 0.2, 0}}})'] + scene + ["@pbf.run(2)"],
+         "refused", "LINE && compute 'g' (gauge) && point 1 (0.03, 0.2, 0) is outside the domain")
+    case("probe_inside_solid", "a probe point 0.03 m inside a solid block (h = 0.02 m)", scene + [
+        block, 'pbf.compute("p", "probe", {points = {{0.03, 0.03, 0.02}, {0.09, 0.03, 0.02}}, '
+        'labels = {"fluid", "deep"}})', "pbf.run(2)", "pbf.run(2)"],
+        "warned", "point 'deep' (0.09, 0.03, 0.02) && solid 'block' && reads 0")
+    case("gauge_inside_solid", "a gauge's foot 0.03 m inside a solid block", scene + [
+        block, 'pbf.compute("g", "gauge", {points = {{0.09, 0.03, 0}}})', "pbf.run(2)"],
+        "warned", "compute 'g' (gauge) && point 1 (0.09, 0.03, 0) && solid 'block'")
+    case("probe_inside_solid_after_run", "a probe defined inside a solid whose map a run has built", scene + [
+        block, "pbf.run(1)", 'pbf.compute("p", "probe", {points = {{0.09, 0.03, 0.02}}, field = "density"})',
+        'print(pbf.value("p"))'],
+        "warned", "compute 'p' (probe) && point 1 (0.09, 0.03, 0.02) && solid 'block'")
+    case("probe_on_solid_face", "a pressure sensor on the block's face, 5 mm inside it", scene + [
+        block, 'pbf.compute("p", "probe", {points = {{0.065, 0.03, 0.02}}, labels = {"face"}})', "pbf.run(2)"],
+        "accepted", "-")
+
+
 def main():
     random.seed(0)
     groups = [Group("lua", "Lua scripts: every parameter of every style, every pbf function, scripts that fight "
@@ -2023,9 +2066,10 @@ def main():
               Group("restart", "Restart files: damaged copies of a base restart the binary under test writes"),
               Group("disk", "Full disks and paths that cannot be written"),
               Group("mesh", "Mesh files given to the solid fix and to pbf.lattice (run by mesh/run.lua)"),
-              Group("cli", "Command-line misuse")]
+              Group("cli", "Command-line misuse"),
+              Group("probes", "Probe and gauge points outside the domain and inside solids")]
     gen = {"lua": gen_lua, "scene": gen_scene, "particles": gen_particles, "restart": gen_restart,
-           "disk": gen_disk, "mesh": gen_mesh, "cli": gen_cli}
+           "disk": gen_disk, "mesh": gen_mesh, "cli": gen_cli, "probes": gen_probes}
     total = 0
     for g in groups:
         gen[g.name](g)
