@@ -57,16 +57,17 @@ local dt = var.dt or 0.4 * h / math.sqrt(2 * g * height)   -- 0.4 h per step at 
 -- WCSPH steps are set by the sound speed c0 = 10 sqrt(2 g 2a) (fix cfl; dt above is their bound)
 local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * g * height)) or dt
 
-if var.restart then
-  local r = pbf.read_restart(var.restart)   -- domain, h, dt, particles, step and time
-  if var.dt then pbf.timestep(var.dt) end   -- a new step size: no longer the saved run's continuation
-  dt = pbf.timestep()
-  print(string.format("continuing from %s: step %d, t = %.4g s", var.restart, r.step, r.time))
-else
+-- The scene, or with -v restart=FILE the scene saved in FILE (domain, h, dt, particles, step
+-- and time): pbf.scene reads it and does not call the function.
+local scene = pbf.scene(function()
   pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 4 * a}}   -- tall enough for the run-up on the far wall
   pbf.kernel_radius(h)
   pbf.timestep(dt)
   pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, height}, spacing = s}
+end)
+if scene.restart then
+  if var.dt then pbf.timestep(var.dt) end   -- a new step size: no longer the saved run's continuation
+  dt = pbf.timestep()
 end
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
@@ -102,9 +103,8 @@ pbf.compute("far", "front", {axis = "x", percentile = 100})
 pbf.compute("back", "gauge", {points = {{0, depth / 2, 0}}})   -- the water's height at the back wall
 pbf.compute("ke", "kinetic_energy")
 pbf.thermo{every = math.max(1, math.floor((var.thermo or 0.01) / dt_typical)),
-           -- a continued run keeps the first run's CSV: its own starts at the restart's step
-           csv = var.csv or (out ~= "" and (var.restart and string.format("%s/thermo.%d.csv", out, pbf.step())
-                                                     or out .. "/thermo.csv") or nil),
+           -- a continued run keeps the first run's rows before the restart and writes the rest again
+           csv = var.csv or (out ~= "" and out .. "/thermo.csv" or nil),
            columns = {"step", "time", "dt", "front", "far", "back", "err.avg", "err.max", "err.compression", "ke"}}
 
 print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %s%.4g s, to t = %g s", solver,

@@ -5,6 +5,7 @@
 // of what a run wrote; a step too large for the spacing warned about.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <regex>
 
@@ -77,12 +78,15 @@ TEST(FirstScenario, ARestartTheScriptCannotContinueIsRefusedBeforeItsRun) {
 }
 
 // Ctrl-C prints the command line that continues, and that command, run as printed, ends
-// where the run that was not stopped ends, bit for bit.
+// where the run that was not stopped ends, bit for bit, its thermo CSV included (the rows
+// before the restart kept, the rest written again).
 TEST(FirstScenario, TheCommandCtrlCPrintsContinuesTheRunExactly) {
   const TempDir dir("first-ctrl-c");
   write_file(dir / "a.lua", kColumn +
                                 "pbf.every('ctrl_c', 150, function(step) if step == var.stop then "
-                                "io.popen('kill -INT $PPID'):close() end end)\n" +
+                                "io.popen('kill -INT $PPID'):close() end end)\n"
+                                "pbf.compute('ke', 'kinetic_energy')\n"
+                                "pbf.thermo{every = 20, columns = {'step', 'time', 'ke'}, csv = 'out/thermo.csv'}\n" +
                                 kRun + "pbf.write_restart(var.final)\n");
   // Stopped at step 150, as Ctrl-C stops it.
   const auto straight = run_in(dir, "run a.lua -v final=straight.restart --log none -v stop=150 --threads 1");
@@ -97,11 +101,19 @@ TEST(FirstScenario, TheCommandCtrlCPrintsContinuesTheRunExactly) {
   EXPECT_NE(command.find(" -v stop=150 --threads 1 "), std::string::npos) << command;  // the rest kept
   const std::string continue_command = fmt::format("cd '{}' && {} > /dev/null 2>&1", dir.string(), command);
   ASSERT_EQ(std::system(continue_command.c_str()), 0) << command;
+  const std::string csv_continued = read_file(dir / "out/thermo.csv");
+  // Again from step 200, which the CSV is past: its rows from step 200 on are written again.
+  ASSERT_EQ(run_in(dir, "run a.lua -v final=again.restart --log none -v restart=out/column.200.restart").code, 0);
+  const std::string csv_again = read_file(dir / "out/thermo.csv");
   // The run that was not stopped: one process to step 300.
   ASSERT_EQ(run_in(dir, "run a.lua -v final=whole.restart --log none").code, 0);
   const std::string whole = read_file(dir / "whole.restart"), continued = read_file(dir / "straight.restart");
   ASSERT_FALSE(whole.empty());
   EXPECT_TRUE(whole == continued);
+  const std::string csv_whole = read_file(dir / "out/thermo.csv");
+  EXPECT_EQ(std::count(csv_whole.begin(), csv_whole.end(), '\n'), 2 + 16);  // units, names, steps 0, 20, ..., 300
+  EXPECT_EQ(csv_continued, csv_whole);
+  EXPECT_EQ(csv_again, csv_whole);
 }
 
 // A fresh run where the restart fix finds restarts of a later step (a run it was perhaps

@@ -39,6 +39,7 @@ struct SavedFixState {
 struct RestartNote {
   std::string path;
   std::int64_t step = -1;
+  bool read = false;  // the scene came from it (a continued run)
 };
 
 class Simulation {

@@ -63,12 +63,13 @@ void Thermo::configure(const Simulation& sim, int every, std::vector<std::string
       const auto parent = std::filesystem::path(csv_path_).parent_path();
       std::error_code ec;
       if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-      csv_.open(csv_path_);
+      const bool continued = keep_rows_before_restart(sim);
+      csv_.open(csv_path_, continued ? std::ios::app : std::ios::trunc);
       if (!csv_) throw Error(fmt::format("thermo: cannot write CSV file '{}'", csv_path_));
-      write_csv_header(sim);
+      if (!continued) write_csv(csv_header(sim));
     }
   } else if (csv_.is_open() && !same_columns) {  // new columns: new header lines
-    write_csv_header(sim);
+    write_csv(csv_header(sim));
   }
 }
 
@@ -116,11 +117,34 @@ std::vector<double> Thermo::values(Simulation& sim) const {
   return out;
 }
 
-void Thermo::write_csv_header(const Simulation& sim) {
+std::string Thermo::csv_header(const Simulation& sim) const {
   const auto u = units(sim);
   std::string line = "# units:";
   for (std::size_t k = 0; k < columns_.size(); ++k) line += fmt::format("{} {} {}", k ? "," : "", columns_[k], u[k]);
-  write_csv(fmt::format("{}\n{}\n", line, fmt::join(columns_, ",")));
+  return fmt::format("{}\n{}\n", line, fmt::join(columns_, ","));
+}
+
+// A run continued from a restart, writing the CSV its first run wrote with the same
+// columns, keeps that file's rows of the steps before the restart's and writes the rest
+// again: the file reads as one run's (the same bytes as the run that never stopped). Any
+// other CSV starts afresh.
+bool Thermo::keep_rows_before_restart(const Simulation& sim) const {
+  const RestartNote& restart = sim.last_restart();
+  if (!restart.read || restart.step != sim.step() || columns_.front() != "step") return false;
+  std::ifstream in(csv_path_, std::ios::binary);
+  const std::string header = csv_header(sim);
+  std::string text(header.size(), '\0');
+  if (!in.read(text.data(), static_cast<std::streamsize>(text.size())) || text != header) return false;
+  std::uintmax_t keep = header.size();
+  for (std::string row; std::getline(in, row) && !in.eof();) {  // whole rows only
+    const std::string step = row.substr(0, row.find(','));
+    if (step.empty() || step.find_first_not_of("0123456789") != std::string::npos || std::stoll(step) >= sim.step())
+      break;  // a later step, or new header lines
+    keep += row.size() + 1;
+  }
+  std::error_code ec;
+  std::filesystem::resize_file(csv_path_, keep, ec);
+  return !ec;
 }
 
 // A line goes out whole or the run stops: a full disk must not leave a CSV cut mid-line

@@ -34,7 +34,8 @@ class Thermo {
   static void check(const Simulation& sim, const std::vector<std::string>& columns);
   void output(Simulation& sim);
   // The comment line of units and the row of names that start a CSV (and each new set of columns).
-  void write_csv_header(const Simulation& sim);
+  std::string csv_header(const Simulation& sim) const;
+  bool keep_rows_before_restart(const Simulation& sim) const;
   void write_csv(const std::string& text);
 
   int every_ = 0;

@@ -369,7 +369,7 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   sim.set_clock(clock);
   sim.particles() = std::move(particles);
   sim.positions_changed();
-  sim.set_last_restart({path, clock.step});
+  sim.set_last_restart({path, clock.step, true});
   if (real_bytes != sizeof(real))
     spdlog::warn("{}: written in {} precision, read into this {}-precision build: the values are converted, and the "
                  "run continues close to, not bit for bit like, the saved run",
