@@ -175,13 +175,8 @@ INSTANTIATE_TEST_SUITE_P(BothSolvers, Piston, ::testing::Values("pbf", "wcsph"))
 // faces (more than a map cell from its edges, where the map is exact) moves along it with the wall's velocity
 // omega x r. The wall's velocity over a step is the chord of its points' arcs, so it differs
 // from omega x r by omega dt / 2 relatively (0.2% here): the particles' must agree within 1%
-// of the face's largest speed. Skipped in single precision: ctest prints only a skipped test's
-// name, so in that build the name says why.
-#define PBF_IS_FLOAT_float 1
-#define PBF_IS_FLOAT_double 0
-#define PBF_CAT(a, b) a##b
-#define PBF_IS_FLOAT(t) PBF_CAT(PBF_IS_FLOAT_, t)
-#if PBF_IS_FLOAT(PBF_REAL)
+// of the face's largest speed. Skipped in single precision, where the name says why.
+#if PBF_REAL_IS_FLOAT
 #define SPINNING_CUBE_TEST ASpinningNoSlipCubeDragsTheFluidTouchingIt_SkippedInSinglePrecisionWhereNoParticleStaysOnAFace
 #else
 #define SPINNING_CUBE_TEST ASpinningNoSlipCubeDragsTheFluidTouchingIt

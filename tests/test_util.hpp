@@ -20,6 +20,14 @@
 #include "engine/core/error.hpp"
 #include "engine/core/real.hpp"
 
+// ctest prints only a skipped test's name: a test that cannot run in one precision is named,
+// in that build, with why (#if PBF_REAL_IS_FLOAT ... TEST(Suite, Name_SkippedInSinglePrecision...)).
+#define PBF_IS_FLOAT_float 1
+#define PBF_IS_FLOAT_double 0
+#define PBF_CAT_(a, b) a##b
+#define PBF_CAT(a, b) PBF_CAT_(a, b)
+#define PBF_REAL_IS_FLOAT PBF_CAT(PBF_IS_FLOAT_, PBF_REAL)
+
 namespace pbf::test {
 
 struct Result {
