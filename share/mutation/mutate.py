@@ -214,9 +214,10 @@ def run_ctest(build: Path, regex: str | None, jobs: int, timeout: float, log) ->
     if regex is not None:
         cmd += ["-R", regex]
     ran = run(cmd, build, timeout, TEST_ENV, log)
+    what = "ctest" if regex is None else f"ctest -R {regex}"
     out = Outcome()
     if "No tests were found" in ran.output:
-        out.ran_nothing.append(f"ctest -R {regex}")
+        out.ran_nothing.append(what)
     for name, why in CTEST_FAILED.findall(ran.output.split("The following tests FAILED:")[-1]
                                           if "The following tests FAILED:" in ran.output else ""):
         out.killers.append(name if why == "Failed" else f"{name} ({why.lower()})")
@@ -224,9 +225,9 @@ def run_ctest(build: Path, regex: str | None, jobs: int, timeout: float, log) ->
             out.timed_out = True
     if ran.rc is None:
         out.timed_out = True
-        out.killers.append(f"ctest -R {regex} (timeout)")
+        out.killers.append(f"{what} (timeout)")
     elif ran.rc != 0 and not out.killers and not out.ran_nothing:
-        out.killers.append(f"ctest -R {regex} (exit {ran.rc})")
+        out.killers.append(f"{what} (exit {ran.rc})")
     return out
 
 
@@ -443,7 +444,7 @@ def write_report(path: Path, header: list[str], rows: list[Row], all_tests: bool
                      f"**{r.result}** | {killers} | {r.seconds:.0f} |")
     counts: dict[str, int] = {}
     for r in rows:
-        key = r.result.split(" ")[0]
+        key = "did not compile" if r.result.startswith("did not") else r.result
         counts[key] = counts.get(key, 0) + 1
     lines += ["", "Totals: " + (", ".join(f"{k} {v}" for k, v in sorted(counts.items())) or "none")
               + f" of {len(rows)}."]
