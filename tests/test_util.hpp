@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <random>
@@ -163,6 +164,8 @@ namespace pbf::test {
 // Relative tolerance for results that would be exact but for rounding: a few hundred
 // roundings of the particle data's type.
 inline constexpr double kRounding = sizeof(pbf::real) == 4 ? 1e-4 : 1e-9;
+// The unit roundoff u of the particle data's type: a stored value is exact to u times itself.
+inline constexpr double kUnitRoundoff = std::numeric_limits<pbf::real>::epsilon() / 2;
 // The message of the pbf::Error that f() throws, or "" if it throws none. Any other
 // exception fails the test (a std::bad_alloc would mean an unchecked size).
 template <class F>
