@@ -78,27 +78,36 @@ TEST(Vorticity, ARigidRotationHasTwiceItsAngularVelocity) {
 // one step adds dt a_i to v_y. The bulk is 3h deep: eta reads the neighbours' |omega|, which
 // need the 2h bulk. A reversed curl gives omega = -kappa (a + b x) z, the same N, and a push
 // along +y; a reversed cross product the same.
+// The same flow turned twice about (1, 1, 1) (v_z growing along y, v_x along z), so that each
+// component of N x omega is exercised.
 TEST(Vorticity, ConfinementPushesAlongTheRotationTowardStrongerVorticity) {
-  const double a = 1.0, b = a / (kN[0] * kS), epsilon = 0.5, dt = 0.1;
-  Simulation sim;
-  run_one_step(sim, dt, epsilon, [&](double x, double, double, double v[3]) {
-    v[0] = v[2] = 0;
-    v[1] = a * x + b * x * x / 2;
-  });
-  const auto& P = sim.particles();
-  const double kappa = test::gradient_norm(kS, sim.kernels());
-  int bulk = 0;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    const double x = P.x()[i];
-    if (!test::in_bulk(kN, kS, 3 * kH, x, P.y()[i], P.z()[i])) continue;
-    ++bulk;
-    const double omega = kappa * (a + b * x), expected = -dt * epsilon * kH * omega * omega;
-    const double v0 = real(a * x + b * x * x / 2), dv = P.vy()[i] - v0;
-    // |omega| and omega each carry the curl's rounding (1.5 kSumRounding of it, see above;
-    // N's direction errs only at second order), and v0 + dv was rounded to u |v0 + dv|.
-    const double tolerance = 2 * 1.5 * kSumRounding * std::fabs(expected) +
-                             2 * test::kUnitRoundoff * (std::fabs(v0) + std::fabs(expected));
-    ASSERT_NEAR(dv, expected, tolerance) << "particle at x = " << x;
+  const double a = 1.0, epsilon = 0.5, dt = 0.1;
+  for (int along = 0; along < 3; ++along) {  // the flow varies along this axis...
+    const int moving = (along + 1) % 3;      // ...and runs along this one
+    const double b = a / (kN[along] * kS);
+    Simulation sim;
+    run_one_step(sim, dt, epsilon, [&](double x, double y, double z, double v[3]) {
+      const double q = along == 0 ? x : along == 1 ? y : z;
+      v[0] = v[1] = v[2] = 0;
+      v[moving] = a * q + b * q * q / 2;
+    });
+    const auto& P = sim.particles();
+    const real* position[3] = {P.x(), P.y(), P.z()};
+    const real* velocity[3] = {P.vx(), P.vy(), P.vz()};
+    const double kappa = test::gradient_norm(kS, sim.kernels());
+    int bulk = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      if (!test::in_bulk(kN, kS, 3 * kH, P.x()[i], P.y()[i], P.z()[i])) continue;
+      ++bulk;
+      const double q = position[along][i];
+      const double omega = kappa * (a + b * q), expected = -dt * epsilon * kH * omega * omega;
+      const double v0 = real(a * q + b * q * q / 2), dv = velocity[moving][i] - v0;
+      // |omega| and omega each carry the curl's rounding (1.5 kSumRounding of it, see above;
+      // N's direction errs only at second order), and v0 + dv was rounded to u |v0 + dv|.
+      const double tolerance = 2 * 1.5 * kSumRounding * std::fabs(expected) +
+                               2 * test::kUnitRoundoff * (std::fabs(v0) + std::fabs(expected));
+      ASSERT_NEAR(dv, expected, tolerance) << "flow along axis " << moving << ", particle at " << q;
+    }
+    EXPECT_EQ(bulk, 4 * 4 * 4);
   }
-  EXPECT_EQ(bulk, 4 * 4 * 4);
 }
