@@ -193,13 +193,19 @@ void list_outputs(const pbf::Simulation& sim, const std::string& log_path) {
   if (!list.empty()) spdlog::info("Wrote:\n{}", list.substr(0, list.size() - 1));
 }
 
+// The debugging aids of `pbfengine run` (Simulation::set_check_every_hook, set_check_ghosts).
+struct DebugChecks {
+  bool every_hook = false, ghosts = false;
+};
+
 int run_script(const std::string& file, const std::vector<std::pair<std::string, std::string>>& variables,
-               bool check_every_hook, const std::vector<std::string>& words, const std::string& log_path) {
+               const DebugChecks& checks, const std::vector<std::string>& words, const std::string& log_path) {
   std::unique_ptr<pbf::Simulation> sim;
   std::unique_ptr<pbf::Script> script;
   try {
     sim = std::make_unique<pbf::Simulation>();
-    sim->set_check_every_hook(check_every_hook);
+    sim->set_check_every_hook(checks.every_hook);
+    sim->set_check_ghosts(checks.ghosts);
     script = std::make_unique<pbf::Script>(*sim);
     script->set_variables(variables);
     script->run_file(file);
@@ -239,10 +245,14 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
   run->add_option("--log-level", level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
-  bool check_every_hook = false;
-  run->add_flag("--check-every-hook", check_every_hook,
+  DebugChecks checks;
+  run->add_flag("--check-every-hook", checks.every_hook,
                 "check for non-finite positions and velocities after every fix, naming the one that produced "
                 "them (a debugging aid; by default once a step)");
+  run->add_flag("--check-ghosts", checks.ghosts,
+                "in one process, read every neighbour through a ghost copy and fill scratch arrays with NaN "
+                "before each fix, so a fix that misses a ghost refresh (what MPI runs need) changes the result "
+                "or stops the run (a debugging aid for writing fixes)");
   std::string vectors = "auto";
   run->add_option("--vectors", vectors,
                   "widest vector instructions of the pair loops: auto (the widest this machine has), avx512, avx2, "
@@ -362,7 +372,7 @@ int main(int argc, char** argv) {
   else
     spdlog::info("pbfengine {} on {} OpenMP thread{} ({})", PBF_VERSION, threads.threads, s, threads.why);
   for (const std::string& warning : threads.warnings) spdlog::warn("{}", warning);
-  const int code = run_script(file, variables, check_every_hook, std::vector<std::string>(argv, argv + argc),
+  const int code = run_script(file, variables, checks, std::vector<std::string>(argv, argv + argc),
                               log_path);
   pbf::comm::stop();
   if (!pbf::log_file::close())

@@ -12,141 +12,20 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
-#include <memory>
 #include <string>
-#include <vector>
 
 #include "engine/core/simulation.hpp"
-#include "engine/geometry/motion.hpp"
 #include "engine/io/restart.hpp"
-#include "engine/registry/style_registry.hpp"
-#include "engine/sph/lattice.hpp"
+#include "pipelines.hpp"
 #include "test_util.hpp"
 
 using namespace pbf;
-using pbf::test::read_file;
-using pbf::test::temp_dir;
+using namespace pbf::test;
 
 namespace {
 
 constexpr int kSteps = 30;
-
-struct StyleSpec {
-  std::string id, style;
-  GivenParams params;
-};
-
-// A scene and its pipeline: fixes and computes, in the order they are added.
-struct Pipeline {
-  double dt;
-  std::vector<StyleSpec> fixes, computes;
-};
-
-const StyleSpec kGravity{"gravity", "gravity", {}}, kWalls{"walls", "box", {}};
-
-// The WCSPH solver with the given density and Monaghan's artificial viscosity.
-std::vector<StyleSpec> wcsph(const std::string& density) {
-  return {kGravity,
-          {"integrator", "leapfrog", {}},
-          {"wcsph", "wcsph", {{"density", density}}},
-          {"viscosity", "sph_viscosity", {{"kind", std::string("artificial")}}}};
-}
-
-// The pipelines, by name; outputs go to `out`. Time steps: 2 ms for PBF; 0.2 ms for WCSPH,
-// under the CFL bound 0.15 h / c0 = 0.24 ms with c0 = 10 sqrt(2 g 0.08 m), or chosen by the
-// `cfl` fix.
-Pipeline pipeline(const std::string& name, const std::filesystem::path& out) {
-  if (name == "PbfVorticityXsph")
-    return {0.002, {kGravity, {"pbf", "pbf", {}}, {"vorticity", "vorticity", {}}, {"xsph", "xsph", {}}, kWalls}, {}};
-  if (name == "WcsphSummationLeapfrogArtificialViscosity") {
-    auto fixes = wcsph("summation");
-    fixes.push_back(kWalls);
-    return {0.0002, fixes, {}};
-  }
-  if (name == "WcsphContinuityCfl") {
-    auto fixes = wcsph("continuity");
-    fixes[2].params.push_back({"diffusion", 0.1});
-    fixes.push_back({"cfl", "cfl", {}});
-    fixes.push_back(kWalls);
-    return {0.001, fixes, {}};  // the largest step: the CFL bound chooses each
-  }
-  if (name == "PbfSolid")  // a sphere in the way of the block, which moves towards it
-    return {0.002,
-            {kGravity,
-             {"pbf", "pbf", {}},
-             kWalls,
-             {"ball",
-              "solid",
-              {{"shape", std::string("sphere")}, {"center", Vec3{0.14, 0.05, 0.03}}, {"radius", 0.03}}}},
-            {}};
-  if (name == "WcsphMovingSolid") {  // a paddle at the block's back, pushing it on a spline
-    const std::vector<Keyframes::Key> keys = {
-        {0, {}}, {0.003, Pose{{0.002, 0, 0}, {0, 0, 0}}}, {0.006, Pose{{0.003, 0, 0}, {0, 2, 0}}}};
-    const MotionPtr motion = std::make_shared<Keyframes>(keys, Keyframes::Interpolation::spline, "paddle");
-    auto fixes = wcsph("summation");
-    fixes.push_back(kWalls);
-    fixes.push_back({"paddle",
-                     "solid",
-                     {{"shape", std::string("box")},
-                      {"lo", Vec3{-0.05, 0, 0}},
-                      {"hi", Vec3{0.0005, 0.1, 0.2}},
-                      {"motion", motion}}});
-    return {0.0002, fixes, {}};
-  }
-  if (name == "SampleProbesGauge") {  // every 2 steps a row; a restart every 10 steps, 2 kept
-    const Points points = {{0.05, 0.05, 0.01}, {0.09, 0.05, 0.05}};
-    return {0.002,
-            {kGravity,
-             {"pbf", "pbf", {}},
-             kWalls,
-             {"sample",
-              "sample",
-              {{"computes", Names{"p", "v", "rho", "h"}}, {"interval", 0.004}, {"file", (out / "s.csv").string()}}},
-             {"restarts", "restart", {{"path", (out / "r.*.restart").string()}, {"every", std::int64_t{10}}}}},
-            {{"p", "probe", {{"points", points}}},
-             {"v", "probe", {{"points", points}, {"field", std::string("velocity")}}},
-             {"rho", "probe", {{"points", points}, {"field", std::string("density")}}},
-             {"h", "gauge", {{"points", points}}}}};
-  }
-  ADD_FAILURE() << "no pipeline " << name;
-  return {};
-}
-
-// A block of 10 x 10 x 8 particles (spacing 1 cm, h = 2 cm) moving at 0.5 m/s along x, in
-// a box twice as long.
-void make_scene(Simulation& sim, double dt) {
-  sim.set_domain(Domain{{0, 0, 0}, {0.2, 0.1, 0.2}});
-  sim.set_kernel_radius(0.02);
-  sim.set_timestep(dt);
-  const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.1, 0.08}, v[3] = {0.5, 0, 0};
-  add_lattice(sim, lo, hi, 0.01, v);
-}
-
-void add(Simulation& sim, const Pipeline& p) {
-  const auto& styles = StyleRegistry::builtin();
-  for (const auto& f : p.fixes) sim.add_fix(styles.make_fix(f.id, f.style, f.params));
-  for (const auto& c : p.computes) sim.add_compute(styles.make_compute(c.id, c.style, c.params));
-}
-
-// Every field of `b` equals the same-named field of `a` bit for bit, particle by particle in
-// memory order (a continued run keeps the straight run's order), and both have the same fields.
-void expect_same_fields(const Particles& a, const Particles& b) {
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(std::memcmp(a.ids(), b.ids(), a.size() * sizeof(*a.ids())), 0) << "memory order differs";
-  EXPECT_EQ(a.fields().size(), b.fields().size());
-  for (FieldId f : a.fields()) {
-    const auto& spec = a.spec(f);
-    const auto other = b.find(spec.name);
-    ASSERT_TRUE(other) << "the continued run has no field '" << spec.name << "'";
-    for (int c = 0; c < spec.components; ++c)
-      for (std::size_t i = 0; i < a.size(); ++i)
-        ASSERT_EQ(std::memcmp(a.data(f, c) + i, b.data(*other, c) + i, sizeof(real)), 0)
-            << "field '" << spec.name << "' component " << c << " of particle " << i << ": " << a.data(f, c)[i]
-            << " straight, " << b.data(*other, c)[i] << " continued";
-  }
-}
 
 }  // namespace
 

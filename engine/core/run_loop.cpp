@@ -175,6 +175,10 @@ void RunLoop::run(std::int64_t steps, double until) {
     }
   }
   for (const auto& f : sim_.fixes_) f->finish(sim_);
+  if (sim_.check_ghosts_ && !P.distributed()) {  // between runs the particles are as without the check
+    P.drop_ghosts();
+    sim_.lists_valid_ = false;
+  }
   timing_.wall_seconds = now() - start;
   timing_.steps = sim_.step_ - first;
   timing_.particles = sim_.global_count();
@@ -201,6 +205,9 @@ void RunLoop::step() {
     sim_.decomposition_.migrate(P, sim_.geometry_);
     sim_.positions_changed();
     timing_.add(row_migrate_, now() - t0);
+  } else if (sim_.check_ghosts_ && P.ghosts() > 0) {  // the copies, made again at the neighbour stage
+    P.drop_ghosts();
+    sim_.lists_valid_ = false;
   }
   if (neighbors_ && sim_.reorder_every_ > 0 && sim_.step_ % sim_.reorder_every_ == 0) {
     // Neighbours near in memory: particles in grid-cell order, by id within a cell, so that
@@ -252,6 +259,7 @@ void RunLoop::step() {
 
 void RunLoop::run_stage(Stage stage, int iteration) {
   for (const Hook& hook : hooks_[static_cast<int>(stage)]) {
+    if (sim_.check_ghosts_) sim_.poison_scratch();  // undefined when a hook starts: NaN
     const double t0 = now();
     call(stage, *hook.fix, iteration);
     const double t1 = now();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 #include <spdlog/spdlog.h>
@@ -242,10 +243,13 @@ Simulation::ListTimes Simulation::bin_and_list() {
   };
   rebuild_ghosts();
   lap(times.ghosts);
-  // Each list in cell order, then id: memory order plays no part.
-  grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_, P.ids());
+  // Each list in cell order, then id: memory order plays no part. The copies of
+  // check_ghosts() are not binned: the lists name them in place of the particles.
+  const bool copies = check_ghosts_ && !P.distributed();
+  grid_.bin(P.x(), P.y(), P.z(), copies ? P.size() : P.size_with_ghosts(), geometry_, ghost_range_, P.ids());
   lap(times.binning);
   grid_.build_lists(P.x(), P.y(), P.z(), h_, P.size());
+  if (copies) grid_.offset_neighbors(static_cast<std::uint32_t>(P.size()));
   lap(times.lists);
   grid_version_ = positions_version_;
   lists_valid_ = true;
@@ -259,11 +263,38 @@ void Simulation::rebuild_ghosts() {
     ghost_range_ = decomposition_.build_ghosts(P, geometry_);
     ghost_positions_version_ = positions_version_;
     lists_valid_ = false;  // the lists' ghost indices name other particles now
+  } else if (check_ghosts_) {
+    copy_particles_as_ghosts();
+    ghost_positions_version_ = positions_version_;
+    lists_valid_ = false;
   }
   ghosts_version_ = positions_version_;
   point_grid_version_ = 0;
   // The density over the lists is computed afresh (with the ghosts, which are others now).
   density_version_ = volume_version_ = 0;
+}
+
+// Particle i's ghost is particle n + i, with every field's value: what a distributed run's
+// ghost build carries. The scratch arrays' contents are undefined now (a distributed run's
+// ghosts are other particles than before), so they become NaN.
+void Simulation::copy_particles_as_ghosts() {
+  auto& P = particles_;
+  P.drop_ghosts();
+  const std::size_t n = P.size();
+  P.add_ghosts(std::span<const std::int64_t>(P.ids(), n));
+  for (FieldId f : P.fields())
+    for (int c = 0; c < P.spec(f).components; ++c) {
+      real* values = P.data(f, c);
+      std::copy(values, values + n, values + n);
+    }
+  poison_scratch();
+}
+
+void Simulation::poison_scratch() {
+  for (auto& array : scratch_) {
+    array.resize(particles_.size_with_ghosts());
+    std::fill(array.begin(), array.end(), std::numeric_limits<real>::quiet_NaN());
+  }
 }
 
 const NeighborGrid& Simulation::point_cells() {
@@ -276,8 +307,10 @@ const NeighborGrid& Simulation::point_cells() {
   } else if (ghosts_version_ != positions_version_) {
     rebuild_ghosts();
   }
-  if (point_grid_version_ != positions_version_ || point_grid_.binned_count() != P.size_with_ghosts()) {
-    point_grid_.bin(P.x(), P.y(), P.z(), P.size_with_ghosts(), geometry_, ghost_range_, P.ids());
+  // The particles and, in a distributed run, the ghosts (those of check_ghosts() are copies).
+  const std::size_t binned = P.distributed() ? P.size_with_ghosts() : P.size();
+  if (point_grid_version_ != positions_version_ || point_grid_.binned_count() != binned) {
+    point_grid_.bin(P.x(), P.y(), P.z(), binned, geometry_, ghost_range_, P.ids());
     point_grid_version_ = positions_version_;
   }
   return point_grid_;
@@ -290,11 +323,16 @@ bool Simulation::measures_at(double x, double y, double z) const {
 }
 
 void Simulation::update_ghosts(std::initializer_list<real*> arrays) {
-  if (particles_.distributed()) decomposition_.update(std::span<real* const>(arrays.begin(), arrays.size()));
+  if (particles_.distributed()) {
+    decomposition_.update(std::span<real* const>(arrays.begin(), arrays.size()));
+  } else if (check_ghosts_ && particles_.ghosts() > 0) {  // each copy from its particle
+    const std::size_t n = particles_.size();
+    for (real* values : arrays) std::copy(values, values + n, values + n);
+  }
 }
 
 void Simulation::update_ghost_positions() {
-  if (!particles_.distributed() || ghost_positions_version_ == positions_version_) return;
+  if (!has_ghosts() || ghost_positions_version_ == positions_version_) return;
   update_ghosts({particles_.x(), particles_.y(), particles_.z()});
   ghost_positions_version_ = positions_version_;
 }

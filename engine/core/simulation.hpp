@@ -78,6 +78,16 @@ class Simulation {
   // debugging aid, one parallel pass more per hook (`pbfengine run --check-every-hook`).
   void set_check_every_hook(bool on) { check_every_hook_ = on; }
   bool check_every_hook() const { return check_every_hook_; }
+  // Whether a run in one process checks that every pass refreshes the ghosts' values it reads
+  // at neighbours (update_ghosts), as a distributed run needs: each particle gets a copy as a
+  // ghost, the neighbour lists name the copies instead of the particles, and every scratch
+  // array is filled with NaN before each hook. A pass that reads at neighbours a value it did
+  // not refresh then reads NaN (a scratch array) or a stale copy (a field), and the run ends
+  // with other bits than the plain run's, or stops at a non-finite value: the mistake shows
+  // in one process, without MPI (`pbfengine run --check-ghosts`; tests/test_ghost_refresh.cpp).
+  // A debugging aid: the copies double the memory and the refreshes cost a pass each.
+  void set_check_ghosts(bool on) { check_ghosts_ = on; }
+  bool check_ghosts() const { return check_ghosts_; }
 
   // --- restarts ---
   // States from a restart: each goes to the fix of the same id (and style) when the script
@@ -192,6 +202,7 @@ class Simulation {
   Kernels kernels_{1.0};
   int reorder_every_ = 20;
   bool check_every_hook_ = false;
+  bool check_ghosts_ = false;
   std::int64_t step_ = 0, step_base_ = 0;
   double time_base_ = 0;
 
@@ -213,6 +224,12 @@ class Simulation {
   std::uint64_t point_grid_version_ = 0, ghosts_version_ = 0;
   bool lists_valid_ = false;  // false when the ghosts were rebuilt after the lists
   void rebuild_ghosts();      // at the current positions: returns nothing, sets ghost_range_
+  // The ghosts of check_ghosts(): a copy of every particle, then the scratch arrays poisoned.
+  void copy_particles_as_ghosts();
+  void poison_scratch();
+  // Whether the particles have ghosts whose values passes must refresh (a distributed run,
+  // or check_ghosts()).
+  bool has_ghosts() const { return particles_.distributed() || check_ghosts_; }
   CellRange ghost_range_;
   GridGeometry geometry_;
   Decomposition decomposition_;

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/sph/neighbor_search_simd.hpp"
 
 namespace pbf {
@@ -136,6 +137,12 @@ void NeighborGrid::order_cells_by(const std::int64_t* key) {
   const std::size_t ncells = cell_count();
 #pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < ncells; ++c) order_cell(c, key);
+}
+
+void NeighborGrid::offset_neighbors(std::uint32_t by) {
+  for_particles(particle_count(), [&](std::size_t i) {
+    for (std::uint32_t k = offset_[i]; k < offset_[i + 1]; ++k) list_[k] += by;
+  });
 }
 
 void NeighborGrid::build_lists(const real* x, const real* y, const real* z, double h, std::size_t listed) {

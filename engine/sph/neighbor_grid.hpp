@@ -65,6 +65,9 @@ class NeighborGrid {
   // Builds the lists of neighbours j != i with |x_i - x_j|^2 < h^2 of the particles i < listed
   // (all of them by default; a rank lists its own particles, whose neighbours include ghosts).
   void build_lists(const real* x, const real* y, const real* z, double h, std::size_t listed = SIZE_MAX);
+  // Adds `by` to every index in the lists: they then name the particles' copies placed `by`
+  // further on (Simulation::set_check_ghosts).
+  void offset_neighbors(std::uint32_t by);
 
   // The lists are followed by this many valid indices (0), so that a vector loop may load a
   // whole vector of indices past the end of a list and mask the extra lanes.
