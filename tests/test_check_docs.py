@@ -49,9 +49,9 @@ class ChangeDetector(unittest.TestCase):
         self.binary.write_text(f"#!{sys.executable}\nimport sys\nsys.stdout.write({output!r})\n")
         self.binary.chmod(0o755)
 
-    def check(self, *options):
-        """Runs check_docs on the page; (exit status, what it printed)."""
-        argv = ["--binary", str(self.binary), "--real", "float", "--ledger", str(self.ledger), *options,
+    def check(self, *options, real="float"):
+        """Runs check_docs on the page as a `real` build would; (exit status, what it printed)."""
+        argv = ["--binary", str(self.binary), "--real", real, "--ledger", str(self.ledger), *options,
                 str(self.page)]
         out = io.StringIO()
         with contextlib.redirect_stdout(out):
@@ -153,6 +153,21 @@ class ChangeDetector(unittest.TestCase):
         code, out = self.check("--update")
         self.assertEqual(code, 0, out)
         self.assertIn("steps per second", self.page.read_text())
+
+    def test_a_build_of_the_other_precision_updates_wording_but_not_the_numbers_it_skips(self):
+        # An each-check: every script runs alone as e.lua, the block shows its last line. The
+        # fake echoes the script to stderr, with this build's digits in the number.
+        scripts = self.dir / "scripts.txt"
+        scripts.write_text("error: no such style 'pfb'\nerror: h is 0.25\n")
+        self.page.write_text(f"<!-- check: each {scripts} -->\n```\nerror: no such style 'pbf'\n"
+                             "error: h is 0.25\n```\n")
+        self.binary.write_text(f"#!{sys.executable}\nimport sys\n"
+                               "sys.stderr.write(open('e.lua').read().replace('0.25', '0.2500000001'))\n"
+                               "sys.exit(1)\n")
+        self.binary.chmod(0o755)
+        code, out = self.check("--update", real="double")
+        self.assertEqual(code, 0, out)
+        self.assertIn("'pfb'\nerror: h is 0.25\n```", self.page.read_text())
 
     def test_because_goes_with_update_and_says_something(self):
         self.prints("done\n")
