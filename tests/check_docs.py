@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Checks that what the docs show pbfengine printing is what it prints.
 
-    python3 tests/check_docs.py [--binary build/pbfengine] [--real double|float] [--update]
-                                [--keep] [-v] [FILE.md ...]
+    python3 tests/check_docs.py [--binary build/pbfengine] [--real double|float]
+                                [--update [--because REASON] [--ledger FILE]] [--keep] [-v] [FILE.md ...]
 
 Without FILE it reads README.md, share/README.md and every docs/**/*.md but the generated
 docs/styles.md (a unit test keeps that one current). Standard library only.
@@ -65,7 +65,16 @@ end (--keep keeps it). The docs show the numbers of the default build, single pr
 (REFERENCE); in a build of the other precision (--real double, or detected from a restart
 the binary writes) the blocks with numbers still run, but are not compared.
 --update rewrites every block that fails from what was printed (blocks that pass keep
-their text); a block whose shape changed must be edited by hand.
+their text), and says what it rewrote; a block whose shape changed must be edited by hand.
+
+The check is a change detector: a changed number in a shown output needs a stated physical
+reason before it is updated. Numbers are those compared, so not the masked figures above, nor
+a `mask` block's, nor version strings. A block whose numbers changed fails saying how many
+and by how much at most, and --update leaves it as it is, unless --because REASON gives the
+reason: then it updates it and appends the numbers (old -> new) with the reason, the date and
+the commit to the ledger, docs/changed-numbers.md (--ledger FILE: another, as
+tests/test_check_docs.py does). Why and how: docs/robustness.md, "The docs check as a change
+detector".
 """
 
 import argparse
@@ -281,11 +290,11 @@ def compact_changes(changes):
 LEDGER_HEADER = """\
 # Changed numbers in the docs
 
-The docs check (`tests/check_docs.py`) is a change detector: a number in an output the docs
-show changes only with a stated physical reason. `--update --because REASON` appends one row
-here for each block whose numbers it changed: the date, the commit it was made at, the block,
-its numbers (old → new, the first few) and the reason. Append only, the newest at the end.
-How and why: [robustness.md](robustness.md#the-docs-check-as-a-change-detector).
+The numbers in outputs the docs show that changed, each with its reason: one row per block
+that `tests/check_docs.py --update --because REASON` updated, with the date, the commit it
+was made at, the block, its numbers (old → new, the first few) and the reason. Append only,
+the newest at the end. The rule and the commands:
+[robustness.md](robustness.md#the-docs-check-as-a-change-detector).
 
 | date (UTC) | commit | block | numbers (old → new) | reason |
 |---|---|---|---|---|
@@ -885,7 +894,9 @@ def run(argv=None):
     checker = Checker(args)
     for rel in args.documents or default_documents():
         checker.check_document(rel)
-    updates = f", {checker.updated} updated, {checker.refused} refused (numbers changed, no --because)" if args.update else ""
+    updates = ""
+    if args.update:
+        updates = f", {checker.updated} updated, {checker.refused} refused (numbers changed, no --because)"
     print(f"check_docs.py: {checker.checked} blocks match, {checker.skipped} blocks or lines skipped "
           f"({checker.real} build){updates}, {checker.failures} failed")
     return 1 if checker.failures else 0
