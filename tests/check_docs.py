@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Checks that what the docs show pbfengine printing is what it prints.
 
-    python3 tests/check_docs.py [--binary build/pbfengine] [--real double|float] [--update]
-                                [--keep] [-v] [FILE.md ...]
+    python3 tests/check_docs.py [--binary build/pbfengine] [--real double|float]
+                                [--update [--because REASON] [--ledger FILE]] [--keep] [-v] [FILE.md ...]
 
 Without FILE it reads README.md, share/README.md and every docs/**/*.md but the generated
 docs/styles.md (a unit test keeps that one current). Standard library only.
@@ -65,11 +65,22 @@ end (--keep keeps it). The docs show the numbers of the default build, single pr
 (REFERENCE); in a build of the other precision (--real double, or detected from a restart
 the binary writes) the blocks with numbers still run, but are not compared.
 --update rewrites every block that fails from what was printed (blocks that pass keep
-their text); a block whose shape changed must be edited by hand.
+their text), and says what it rewrote; a block whose shape changed must be edited by hand.
+
+The check is a change detector: a changed number in a shown output needs a stated physical
+reason before it is updated. Numbers are those compared, so not the masked figures above, nor
+a `mask` block's, nor version strings. A block whose numbers changed fails saying how many
+and by how much at most, and --update leaves it as it is, unless --because REASON gives the
+reason: then it updates it and appends the numbers (old -> new) with the reason, the date and
+the commit to the ledger, docs/changed-numbers.md (--ledger FILE: another, as
+tests/test_check_docs.py does). Why and how: docs/robustness.md, "The docs check as a change
+detector".
 """
 
 import argparse
+import datetime
 import difflib
+import math
 import os
 import re
 import shlex
@@ -78,14 +89,17 @@ import struct
 import subprocess
 import sys
 import tempfile
-
-REFERENCE = "float"  # the precision whose numbers the docs show: the default build's
 import threading
 import time
+from dataclasses import dataclass
 from pathlib import Path
+
+REFERENCE = "float"  # the precision whose numbers the docs show: the default build's
 
 REPO = Path(__file__).resolve().parent.parent
 GENERATED = {"docs/styles.md"}
+LEDGER = "docs/changed-numbers.md"  # where --because records the numbers it let change
+DEFAULT_BINARY = str(REPO / "build" / "pbfengine")
 OPTIONS = {"stdout", "stderr", "exit", "head", "tail", "excerpt", "grep", "file", "each", "setup", "column",
            "mask", "numbers", "log", "slow"}
 TIMEOUT = 300  # s per command: a machine shared with other runs can be many times slower
@@ -188,6 +202,133 @@ def compare(block, output, mode, masked):
     if mode == "all" and "..." not in block:
         return False, list(output)
     return False, None
+
+
+# --- changed numbers: what --update takes only with a reason ---------------------------
+
+@dataclass
+class NumberChange:
+    """A number a block shows that the new output changes: on the block's line `offset`
+    (0-based among its lines), `old` becomes `new` (None: the number is gone)."""
+    offset: int
+    old: str
+    new: str | None
+
+    def relative(self):
+        """|new - old| / |old| (infinite from 0), or None for a number gone."""
+        if self.new is None:
+            return None
+        old, new = float(self.old), float(self.new)
+        if old == new:
+            return 0.0
+        return abs(new - old) / abs(old) if old != 0 else math.inf
+
+
+def comparable(lines):
+    """The lines as the check compares them, less version strings (a release is not a result):
+    what is left of their numbers is what needs a reason to change."""
+    return [VERSION.sub("", x) for x in canonical(lines)]
+
+
+def number_changes(shown, new):
+    """The numbers of `shown` (a block's lines) that `new` (what --update would write)
+    changes or drops, in order. The numbers the check masks (timings, thread counts, ...) are
+    not numbers here, nor are those of lines that `new` adds: the docs did not show them."""
+    old_lines, new_lines = comparable(shown), comparable(new)
+    # Lines first, by their shape (numbers masked), so that a number is paired with the one in
+    # its place on the same line, not with an equal one elsewhere.
+    lines = difflib.SequenceMatcher(None, [mask(x) for x in old_lines], [mask(x) for x in new_lines],
+                                    autojunk=False)
+    changes = []
+    for tag, i1, i2, j1, j2 in lines.get_opcodes():
+        if tag == "insert":
+            continue
+        old = [(k, x) for k in range(i1, i2) for x in NUMBER.findall(old_lines[k])]
+        new = [x for k in range(j1, j2) for x in NUMBER.findall(new_lines[k])]
+        if tag == "equal":  # same shape, so as many numbers, in the same places
+            changes += [NumberChange(k, a, b) for (k, a), b in zip(old, new) if a != b]
+            continue
+        # Lines reworded (or dropped): pair their numbers by order within the run of lines.
+        numbers = difflib.SequenceMatcher(None, [x for _, x in old], new, autojunk=False)
+        for op, a1, a2, b1, b2 in numbers.get_opcodes():
+            if op in ("replace", "delete"):
+                changes += [NumberChange(old[a][0], old[a][1], new[b1 + a - a1] if b1 + a - a1 < b2 else None)
+                            for a in range(a1, a2)]
+    return changes
+
+
+def describe_relative(r):
+    return "from 0" if r == math.inf else f"{100 * r:.3g}%"
+
+
+def summarise_changes(changes):
+    """'3 numbers changed, by at most 1.2% (relative)': how many, and how much."""
+    def count(n):
+        return f"{n} number{'s' if n != 1 else ''}"
+    relative = [r for r in (c.relative() for c in changes) if r is not None]
+    parts = []
+    if relative:
+        largest = max(relative)
+        how = "one of them from 0" if largest == math.inf else f"by at most {describe_relative(largest)} (relative)"
+        parts.append(f"{count(len(relative))} changed, {how}")
+    if len(relative) < len(changes):
+        parts.append(f"{count(len(changes) - len(relative))} gone")
+    return " and ".join(parts)
+
+
+SHOWN_CHANGES = 8  # the changed numbers listed per block; the rest are counted
+
+
+def compact_changes(changes):
+    """'0.4123 → 0.4131, 12 → 13, ... (+5 more)': the first changes, for one line."""
+    text = ", ".join(f"{c.old} → {c.new if c.new is not None else '(gone)'}" for c in changes[:SHOWN_CHANGES])
+    if len(changes) > SHOWN_CHANGES:
+        text += f", ... (+{len(changes) - SHOWN_CHANGES} more)"
+    return text
+
+
+LEDGER_HEADER = """\
+# Changed numbers in the docs
+
+The numbers in outputs the docs show that changed, each with its reason: one row per block
+that `tests/check_docs.py --update --because REASON` updated, with the date, the commit it
+was made at, the block, its numbers (old → new, the first few) and the reason. Append only,
+the newest at the end. The rule and the commands:
+[robustness.md](robustness.md#the-docs-check-as-a-change-detector).
+
+| date (UTC) | commit | block | numbers (old → new) | reason |
+|---|---|---|---|---|
+"""
+
+
+def current_commit():
+    try:
+        p = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO, capture_output=True, text=True,
+                           timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return "unknown"
+    return p.stdout.strip() if p.returncode == 0 and p.stdout.strip() else "unknown"
+
+
+def append_to_ledger(ledger, entries, reason):
+    """Appends a row per (file:line, changes) to the ledger (opened to append: the rows before
+    stay as they are), first writing its header if it is new."""
+    def cell(text):  # one table cell: no line breaks, no column separators
+        return " ".join(text.split()).replace("|", "\\|")
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M")
+    commit = current_commit()
+    ledger.parent.mkdir(parents=True, exist_ok=True)
+    with ledger.open("a+", encoding="utf-8") as f:
+        f.seek(0)
+        text = f.read()
+        if not text.strip():
+            f.truncate(0)
+            f.write(LEDGER_HEADER)
+        elif not text.endswith("\n"):
+            f.write("\n")
+        for where, changes in entries:
+            f.write(f"| {date} | {commit} | {cell(where)} | {cell(compact_changes(changes))}; "
+                    f"{cell(summarise_changes(changes))} | {cell(reason)} |\n")
 
 
 # --- Markdown ---------------------------------------------------------------------------
@@ -330,23 +471,79 @@ class Checker:
         self.update = args.update
         self.verbose = args.verbose
         self.keep = args.keep
+        self.because = args.because  # the reason that lets --update change numbers, or None
+        self.ledger = REPO / args.ledger  # an absolute path stays as it is
+        self.ledger_name = args.ledger
+        self.accept_options = accept_options(args)
         self.failures = 0
         self.checked = 0
         self.skipped = 0
+        self.updated = 0
+        self.refused = 0
         self.lock = threading.Lock()
         self.slow_updates = []
+        self.number_updates = {}  # block: its number changes that --because lets --update write
 
     def say(self, text):
         with self.lock:
             print(text, flush=True)
 
-    def fail(self, block, why, expected=None, actual=None):
+    def fail(self, block, why, expected=None, actual=None, changes=()):
         with self.lock:
             self.failures += 1
             print(f"{block.path}:{block.lineno}: FAIL: {why}")
             if expected is not None:
                 for line in difflib.unified_diff(expected, actual, "docs", "pbfengine", lineterm="", n=2):
                     print("    " + line)
+            if changes:
+                print(f"    these are numbers, a result changed (not wording): {summarise_changes(changes)}:")
+                self.print_changes(block, changes)
+                print("    updating them needs the physical reason for the change, given with --because:")
+                print("      " + self.accept_command(block))
+            sys.stdout.flush()
+
+    def refuse(self, block, why, changes):
+        """--update without --because meets changed numbers: the block stays as it is."""
+        with self.lock:
+            self.failures += 1
+            self.refused += 1
+            print(f"{block.path}:{block.lineno}: NOT UPDATED: {why}, and {summarise_changes(changes)}:")
+            self.print_changes(block, changes)
+            print("    a changed number needs a stated physical reason; if the change is meant:")
+            print("      " + self.accept_command(block))
+            sys.stdout.flush()
+
+    @staticmethod
+    def print_changes(block, changes):
+        """The first changes, one a line: file:line: old → new (relative change)."""
+        for c in changes[:SHOWN_CHANGES]:
+            r = c.relative()
+            how = "gone" if r is None else describe_relative(r) if r else "the same value, written otherwise"
+            print(f"      {block.path}:{block.start + 1 + c.offset}: {c.old} → "
+                  f"{c.new if c.new is not None else '(gone)'} ({how})")
+        if len(changes) > SHOWN_CHANGES:
+            print(f"      ... and {len(changes) - SHOWN_CHANGES} more")
+
+    def accept_command(self, block):
+        return shlex.join(["python3", "tests/check_docs.py", *self.accept_options, "--update", "--because",
+                           "THE PHYSICAL REASON", block.path])
+
+    def report_update(self, block, why, old, new, changes):
+        """Says what --update rewrote: the changed numbers, or the lines (wording)."""
+        with self.lock:
+            self.updated += 1
+            if changes:
+                print(f"{block.path}:{block.lineno}: updated ({why}): {summarise_changes(changes)}, "
+                      f"recorded in {self.ledger_name}:")
+                self.print_changes(block, changes)
+            else:
+                print(f"{block.path}:{block.lineno}: updated ({why}): no number changed:")
+                diff = [x for x in difflib.unified_diff(old, new, lineterm="", n=0)
+                        if not x.startswith(("---", "+++", "@@"))]
+                for line in diff[:2 * SHOWN_CHANGES]:
+                    print("      " + line)
+                if len(diff) > 2 * SHOWN_CHANGES:
+                    print(f"      ... and {len(diff) - 2 * SHOWN_CHANGES} more lines")
             sys.stdout.flush()
 
     @staticmethod
@@ -500,6 +697,8 @@ class Checker:
                     and not scripts[k].rstrip().endswith("-- numbers") and "numbers" not in opts]
             ok = [canonical(shown)[k] for k in keep] == [canonical(messages)[k] for k in keep] and not why
             self.skipped += len(shown) - len(keep)
+            # --update writes the skipped lines as shown: this build's numbers are not the docs'
+            messages = [messages[k] if k in keep else shown[k] for k in range(len(shown))]
         else:
             ok = canonical(shown) == canonical(messages) and not why
         if block.table:
@@ -575,12 +774,21 @@ class Checker:
                 if self.verbose:
                     print(f"{block.path}:{block.lineno}: skipped (numbers of a {REFERENCE}-precision build)")
                 return None
+        # The docs check is a change detector: numbers the block shows may change only for a
+        # stated reason. Those a `mask` block shows are masked (timings): they may change.
+        changes = [] if new is None or "mask" in opts else number_changes(block.lines, new)
         if self.update and new is not None:
-            self.say(f"{block.path}:{block.lineno}: updated ({why})")
+            if changes and not self.because:
+                self.refuse(block, why, changes)
+                return None
+            self.report_update(block, why, block.lines, new, changes)
             if "exited with" in why or "edit by hand" in why:  # what --update cannot mend
                 self.fail(block, why, *(diff or (None, None)))
+            if changes:
+                with self.lock:
+                    self.number_updates[block] = changes
             return new
-        self.fail(block, why, *(diff or (None, None)))
+        self.fail(block, why, *(diff or (None, None)), changes=changes)
         return None
 
     def check_document(self, rel):
@@ -630,6 +838,18 @@ class Checker:
                 else:
                     lines[block.start:block.end] = [block.indent + x if x else x for x in new]
             path.write_text("\n".join(lines))
+            self.record_number_updates(updates)
+
+    def record_number_updates(self, updates):
+        """Appends the blocks whose numbers --because let change to the ledger, each at its
+        line in the file as updated (the blocks above it may have grown or shrunk)."""
+        entries, shift = [], 0
+        for block, new in sorted(updates, key=lambda u: u[0].start):
+            if block in self.number_updates:
+                entries.append((f"{block.path}:{block.lineno + shift}", self.number_updates.pop(block)))
+            shift += len(new) - (block.end - block.start)
+        if entries:
+            append_to_ledger(self.ledger, entries, self.because)
 
 
 def default_documents():
@@ -637,24 +857,50 @@ def default_documents():
     return [d for d in docs if d not in GENERATED and (REPO / d).is_file()]
 
 
-def main():
+def accept_options(args):
+    """The options of this run that the command accepting a change repeats."""
+    words = []
+    if args.binary != DEFAULT_BINARY:
+        words += ["--binary", args.binary]
+    if args.real:
+        words += ["--real", args.real]
+    if args.ledger != LEDGER:
+        words += ["--ledger", args.ledger]
+    return words
+
+
+def run(argv=None):
+    """Checks (or updates) the documents; returns the exit status."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("documents", nargs="*", help="Markdown files, relative to the repository (default: all)")
-    ap.add_argument("--binary", default=str(REPO / "build" / "pbfengine"))
+    ap.add_argument("--binary", default=DEFAULT_BINARY)
     ap.add_argument("--real", choices=["double", "float"], help="the binary's precision (default: detected)")
-    ap.add_argument("--update", action="store_true", help="rewrite the blocks that fail from the output")
+    ap.add_argument("--update", action="store_true",
+                    help="rewrite the blocks that fail from the output (numbers only with --because)")
+    ap.add_argument("--because", metavar="REASON",
+                    help="with --update: the physical reason the numbers changed; lets --update change them "
+                         "and records them with it in the ledger")
+    ap.add_argument("--ledger", default=LEDGER, metavar="FILE",
+                    help=f"where --because records changed numbers (default: {LEDGER}, relative to the repository)")
     ap.add_argument("--keep", action="store_true", help="keep the scratch directories")
     ap.add_argument("-v", "--verbose", action="store_true")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
+    if args.because is not None and not args.update:
+        ap.error("--because goes with --update")
+    if args.because is not None and not args.because.strip():
+        ap.error("--because needs the reason the numbers changed")
     if not Path(args.binary).is_file():
         sys.exit(f"check_docs.py: error: no binary {args.binary} (give --binary)")
     checker = Checker(args)
     for rel in args.documents or default_documents():
         checker.check_document(rel)
+    updates = ""
+    if args.update:
+        updates = f", {checker.updated} updated, {checker.refused} refused (numbers changed, no --because)"
     print(f"check_docs.py: {checker.checked} blocks match, {checker.skipped} blocks or lines skipped "
-          f"({checker.real} build), {checker.failures} failed")
-    sys.exit(1 if checker.failures else 0)
+          f"({checker.real} build){updates}, {checker.failures} failed")
+    return 1 if checker.failures else 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(run())
