@@ -109,3 +109,56 @@ TEST(Computes, PerParticleDensityIsEachIdsOwnSum) {
   for (std::size_t i = 0; i < P.size(); ++i) out_of_order += P.ids()[i] != static_cast<std::int64_t>(i);
   EXPECT_GT(out_of_order, 0u);
 }
+
+// A gauge reads the level where the fluid fraction f(z) = sum_j (m_j / rho0) W crosses 1/2
+// (engine/computes/gauge.cpp): it samples f every quarter spacing down its line and
+// interpolates linearly between the two samples around the crossing. Against the crossing of
+// the same f summed here over every particle in double precision and found by bisection, the
+// level may then be off by the linear interpolation's error only: M dz^2 / (8 |f'|), M the
+// largest |f''| between the samples, dz their distance (measured here on the reference f), and
+// rounding (f's, 1e-6 over |f'| ~ 50 per metre). The lines' feet are spread over one sample
+// interval, so the crossing falls at different places between samples: a level interpolated from
+// the wrong end of the interval (off by dz |1 - 2t|, t the crossing's place in it) misses on some.
+TEST(Computes, AGaugeFindsWhereTheFluidFractionCrossesOneHalf) {
+  Simulation sim;
+  sim.set_domain(Domain{{0, 0, 0}, {0.2, 0.2, 0.2}});
+  sim.set_kernel_radius(0.02);
+  sim.set_timestep(0.001);
+  const double lo[3] = {0.05, 0.05, 0}, hi[3] = {0.15, 0.15, 0.06}, v[3] = {0, 0, 0};
+  add_lattice(sim, lo, hi, 0.01, v);
+  const double x = 0.1, y = 0.1, dz = 0.01 / 4, top = 0.2;
+  const Points feet = {{x, y, 0}, {x, y, 0.3 * dz}, {x, y, 0.55 * dz}, {x, y, 0.8 * dz}};
+  auto gauge = StyleRegistry::builtin().make_compute("g", "gauge", {{"points", feet}});
+  std::vector<double> levels;
+  gauge->evaluate(sim, levels);
+  ASSERT_EQ(levels.size(), feet.size());
+
+  const auto& P = sim.particles();
+  const Kernels& K = sim.kernels();
+  const double rho0 = sim.rest_density();
+  auto f = [&](double z) {
+    double sum = 0;
+    for (std::size_t j = 0; j < P.size(); ++j) {
+      const double dx = x - P.x()[j], dy = y - P.y()[j], dzj = z - P.z()[j], r2 = dx * dx + dy * dy + dzj * dzj;
+      if (r2 < double(K.h2)) sum += double(P.mass()[j]) / rho0 * double(K.W(real(r2)));
+    }
+    return sum;
+  };
+  // The highest crossing: down from the top in steps of dz / 100, then bisection.
+  double above = top, below = top;
+  while (f(below) < 0.5) above = below, below -= dz / 100;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = (above + below) / 2;
+    (f(mid) >= 0.5 ? below : above) = mid;
+  }
+  const double crossing = below, e = dz / 10;
+  double curvature = 0;  // the largest |f''| within a sample interval of the crossing
+  for (double z = crossing - dz; z <= crossing + dz; z += e)
+    curvature = std::max(curvature, std::fabs(f(z + e) - 2 * f(z) + f(z - e)) / (e * e));
+  const double slope = std::fabs(f(crossing + e) - f(crossing - e)) / (2 * e);
+  ASSERT_GT(slope, 10.0);  // a surface, not a plateau
+  const double bound = curvature * dz * dz / (8 * slope) + 1e-6 / slope;
+  EXPECT_LT(bound, 0.1 * dz);  // the check can tell a sample interval's parts apart
+  for (std::size_t k = 0; k < feet.size(); ++k)
+    EXPECT_NEAR(levels[k] + feet[k][2], crossing, bound) << "the line from z0 = " << feet[k][2];
+}

@@ -7,7 +7,9 @@
 
 #include "engine/sph/kernels.hpp"
 
+#include <array>
 #include <cmath>
+#include <string>
 
 #include "engine/core/error.hpp"
 #include "engine/core/simulation.hpp"
@@ -280,4 +282,50 @@ TEST(Solid, ALoadOfAnUnknownSolidIsRefusedByName) {
   sim.add_compute(StyleRegistry::builtin().make_compute("f", "load", {{"solid", std::string("tnak")}}));
   std::vector<double> values;
   EXPECT_ERROR_NAMING(sim.find_compute("f")->evaluate(sim, values), "'tnak'", "did you mean 'tank'");
+}
+
+// A no_slip solid takes a touching particle's whole tangential velocity (relative to the
+// wall; this one is at rest): a layer of fluid sliding at 0.5 m/s over a solid floor stops
+// dead where it touches it, after one step, in both solvers and both precisions; with
+// no_slip off and no friction it slides on at the speed it had, on average over the layer (the
+// solver's sideways corrections, up to 1% at the block's sides, cancel in the mean as the
+// block is symmetric about its centre: 1e-3 allows their rounding and the block's slight
+// asymmetry, its front, after moving 0.5 mm in a step). The contact: the
+// lattice's first layer starts half a spacing above the floor, where the solid keeps it.
+// Bound for "stops": the normal's rounding, u, times the speed (the wall's velocity is 0).
+TEST(Solid, ANoSlipFloorStopsTheFluidSlidingOnIt) {
+  for (const std::string solver : {"pbf", "wcsph"})
+    for (const bool no_slip : {true, false}) {
+      Simulation sim;
+      const double U = 0.5, floor = 0.02;
+      block(sim, std::array<double, 3>{0.15, 0.05, floor}.data(), std::array<double, 3>{0.25, 0.15, 0.06}.data(), U);
+      sim.set_timestep(solver == "pbf" ? 1e-3 : 1e-4);
+      sim.add_fix(fix("gravity", "gravity"));
+      sim.add_fix(fix("floor", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0, 0, 0}},
+                                         {"hi", Vec3{0.4, 0.2, floor}}, {"no_slip", no_slip}, {"friction", 0.0}}));
+      if (solver == "pbf") {
+        sim.add_fix(fix("pbf", "pbf"));
+      } else {
+        sim.add_fix(fix("integrator", "leapfrog"));
+        sim.add_fix(fix("wcsph", "wcsph", {{"sound_speed", 20.0}}));
+      }
+      sim.run(1);
+      const auto& P = sim.particles();
+      int touching = 0;
+      double slide = 0;
+      for (std::size_t i = 0; i < P.size(); ++i) {
+        if (P.z()[i] > floor + 0.0051) continue;  // half a spacing and the solid's hairs (1e-3 of a map cell)
+        ++touching;
+        const std::string what = solver + (no_slip ? ", no slip" : ", free slip") + ": particle " +
+                                 std::to_string(P.ids()[i]);
+        if (no_slip) {
+          EXPECT_NEAR(P.vx()[i], 0.0, 4 * test::kUnitRoundoff * U) << what;
+          EXPECT_NEAR(P.vy()[i], 0.0, 4 * test::kUnitRoundoff * U) << what;
+        } else {
+          slide += P.vx()[i];
+        }
+      }
+      EXPECT_EQ(touching, 100) << solver << ": the whole first layer (10 x 10) touches the floor";
+      if (!no_slip) EXPECT_NEAR(slide / touching, U, 1e-3 * U) << solver << ": the layer's mean speed";
+    }
 }

@@ -465,3 +465,40 @@ TEST(Wcsph, TheContinuityDensitySeesAMovingWallsVelocity) {
   }
   EXPECT_GT(near, 100);
 }
+
+// The equation of state: after a step, every particle's pressure is the Tait equation of its
+// density, p = B ((rho/rho0)^gamma - 1), B = rho0 c0^2 / gamma, negative values clamped to 0.
+// A block of 8^3 particles whose masses are 3% above the lattice's (rho = 1.03 rho0 inside,
+// where p = 0.23 B; less at its surface, where the clamp acts). Both the density and the
+// pressure are the fix's fields. Rounding of the single-precision evaluation: the ratio
+// rho/rho0 (u), the power (gamma u and pow's own ulp), B (u), so at most
+// B u ((gamma + 4) x^gamma + 2 |x^gamma - 1|), x = rho/rho0: 3e-6 of p here. An exponent off by
+// one (x^6 - 1 = 0.19 instead of 0.23) misses by 16%.
+TEST(Wcsph, ThePressureIsTheTaitEquationOfTheDensity) {
+  for (const double gamma : {7.0, 3.0}) {
+    pbf::Simulation sim;
+    sim.set_domain(pbf::Domain{{0, 0, 0}, {0.2, 0.2, 0.2}});
+    sim.set_kernel_radius(0.02);
+    sim.set_timestep(1e-4);
+    const double lo[3] = {0.06, 0.06, 0.06}, hi[3] = {0.14, 0.14, 0.14}, v[3] = {0, 0, 0};
+    pbf::add_lattice(sim, lo, hi, 0.01, v);
+    auto& P = sim.particles();
+    for (std::size_t i = 0; i < P.size(); ++i) P.mass()[i] *= pbf::real(1.03);
+    const double c0 = 20, rho0 = sim.rest_density(), B = rho0 * c0 * c0 / gamma;
+    const auto& styles = pbf::StyleRegistry::builtin();
+    sim.add_fix(styles.make_fix("integrator", "leapfrog", {}));
+    sim.add_fix(styles.make_fix("wcsph", "wcsph", {{"sound_speed", c0}, {"gamma", gamma}}));
+    sim.run(1);
+    const pbf::real* rho = P.data(*P.find("density"));
+    const pbf::real* p = P.data(*P.find("pressure"));
+    int compressed = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      const double x = double(rho[i]) / rho0, power = std::pow(x, gamma);
+      const double expected = std::max(0.0, B * (power - 1));
+      const double bound = B * pbf::test::kUnitRoundoff * ((gamma + 4) * power + 2 * std::fabs(power - 1));
+      ASSERT_NEAR(p[i], expected, bound) << "particle " << P.ids()[i] << ", rho = " << rho[i] << ", gamma " << gamma;
+      if (x > 1.029) ++compressed;
+    }
+    EXPECT_GE(compressed, 4 * 4 * 4);  // the inner particles, 2 spacings (h) from the surface
+  }
+}

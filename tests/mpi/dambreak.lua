@@ -31,6 +31,7 @@ pbf.compute("pe", "potential_energy")
 pbf.compute("v", "speed")
 pbf.compute("err", "density_error")
 pbf.compute("it", "iterations")
+pbf.compute("n", "count")  -- every rank's particles, not this rank's
 local out = var.out or "out/mpi"
 pbf.fix("dump", "dump/text", {path = out .. "/f_*.txt", every = 50,
                               fields = {"id", "position", "velocity", "density", "vorticity_magnitude"}})
@@ -44,7 +45,7 @@ pbf.compute("front", "front", {axis = "x", percentile = 95})
 pbf.fix("probes", "sample", {computes = {"vel", "rho", "depth", "box", "front"}, interval = 0.01,
                              file = out .. "/probes.csv"})
 pbf.thermo{every = 10, csv = out .. "/thermo.csv",
-           columns = {"step", "particles", "ke", "pe", "v.max", "v.avg", "err.avg", "err.max", "it.avg", "it.error",
+           columns = {"step", "particles", "n", "ke", "pe", "v.max", "v.avg", "err.avg", "err.max", "it.avg", "it.error",
                       "load.fx", "load.fy", "load.fz"}}
 print(string.format("dambreak: %d particles on %d rank(s)", pbf.count(), pbf.ranks()))
 pbf.run(tonumber(var.steps or 250) - pbf.step())
