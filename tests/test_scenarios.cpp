@@ -112,11 +112,19 @@ TEST(DamBreak, SurgesForwardWithoutLosingParticles) {
   auto c = read_csv(dir / "out" / "thermo.csv");
   const double a = 0.1, g = 9.81;
   ASSERT_GT(c["time"].size(), 5u);
-  EXPECT_NEAR(c["front"].front() / a, 1.0, 0.05);
-  // By T = t sqrt(2g/a) = 2 the front has clearly left the column (Martin & Moyce: Z = 2.35).
+  EXPECT_NEAR(c["front"].front() / a, 1.0, 0.05);  // the 99th percentile of x: 1 - 0.5 s / a = 0.96
+  // By T = t sqrt(2g/a) = 2 the front has clearly left the column (Martin & Moyce: Z = 2.33 at
+  // T = 1.98 and 2.56 at 2.20, read to 0.11; measured 2.45 at T = 2.09).
   const double T = c["time"].back() * std::sqrt(2 * g / a);
   ASSERT_GT(T, 2.0);
   EXPECT_GT(c["front"].back() / a, 2.0);
+  // And no further than Ritter's dam break in shallow water, whose front runs at 2 sqrt(g H) from
+  // t = 0 (H = 2a): Z <= 1 + 2 sqrt(2 g a) t / a = 1 + 2T. A real column must fall first; its front
+  // lags (Martin & Moyce: Z = 4.11 at T = 3.33, against 7.66). Measured Z = 1.33 at T = 1.04
+  // (bound 3.09), 2.45 at 2.09 (5.18): loose (the advance Z - 1 is a third of Ritter's), it
+  // catches a front that runs away (particles shot ahead, gravity or pressure several times too strong).
+  for (std::size_t k = 0; k < c["time"].size(); ++k)
+    EXPECT_LE(c["front"][k] / a, 1 + 2 * c["time"][k] * std::sqrt(2 * g / a)) << "t = " << c["time"][k];
   // The last frame still holds every particle.
   std::string last;
   for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
