@@ -58,6 +58,8 @@ TEST(AdaptiveIterations, HoldTheCompressionAtTheTarget) {
       const auto it = values(sim, "it");
       ASSERT_LT(it[0], 100) << "the step hit max_iterations";
       EXPECT_LE(it[2], targets[k]) << "step " << sim.step();
+      // 10%: measured up to that above the target on columns near rest (docs/physics.md, "An
+      // accuracy target"); the missed pairs grow with how far particles move in a step.
       EXPECT_LE(values(sim, "err")[2], 1.1 * targets[k]) << "step " << sim.step();
       mean_count[k] += it[0] / 40;
     }

@@ -47,6 +47,8 @@ TEST(Box, RestitutionReturnsThatShareOfTheImpactSpeed) {
       if (impact > 0) rebound = std::max(rebound, vz());
     }
     ASSERT_GT(impact, 1.3);  // sqrt(2 g 0.1) = 1.40 m/s
+    // 2e-3 = 2 g dt: the speeds are read a step before and after the bounce, each up to g dt from
+    // the bounce's; plus 1%. The three restitutions' rebounds lie 0.4 impact or more apart.
     EXPECT_NEAR(rebound, e * impact, 0.01 * impact + 2e-3) << "restitution " << e;
   }
 }
@@ -64,6 +66,9 @@ TEST(Box, FrictionIsARatePerSecondWhateverTheTimeStep) {
   }
   // It starts 5 mm above the floor, at the default contact distance (half a spacing): it
   // touches the wall and slides from t = 0 to 1 s.
+  // exp(-rate dt) a step is exp(-2) after 1 s at any dt: 5e-4 (2% of 0.027 m/s) is for a step
+  // or two out of contact (rate dt = 0.4% each) and single precision's ulp(x) / dt a step. A
+  // rate per step would give exp(-4) at 1 ms, 0.023 m/s off.
   EXPECT_NEAR(speed[0], 0.2 * std::exp(-2.0), 5e-4);
   EXPECT_NEAR(speed[1], speed[0], 5e-4);  // not exp(-2 * 2) with half the step
 }

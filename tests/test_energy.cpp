@@ -56,6 +56,8 @@ TEST_P(MechanicalEnergy, NeverExceedsItsStartInADamBreak) {
     kinetic_peak = std::max(kinetic_peak, kinetic);
     ASSERT_LE(total, start * (1 + 1e-9)) << solver << ", step " << steps << ", t = " << sim.time();
   }
+  // The column's centre of mass falls from 0.1 m to a layer near the floor by 0.4 s: most of its
+  // m g z becomes motion on the way; a dam that did not break moves none of it.
   EXPECT_GT(kinetic_peak, 0.1 * start) << "the dam broke: a good part of the energy moved";
 }
 

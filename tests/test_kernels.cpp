@@ -30,15 +30,20 @@ double radial_integral(double h, F&& f) {
 TEST(Kernels, IntegratesToOneAndItsGradientIsTheDerivative) {
   for (double h : {0.01, 0.02, 1.0, 3.0}) {
     const Kernels K(h);
+    // Each W(r) errs by a few u of real (6e-8 in single precision), so the sum does; the midpoint
+    // rule's error is (h/n)^2-small (1e-11). A constant off by 0.1% fails 1e-6 a thousand times over.
     EXPECT_NEAR(radial_integral(h, [&](double r) { return double(K.W(real(r * r))); }), 1.0, 1e-6) << h;
     for (double q : {0.1, 0.3, 0.5, 0.8, 0.95}) {
       const double r = q * h, e = (sizeof(real) == 4 ? 1e-3 : 1e-7) * h;  // above the type's rounding
       const double derivative = (K.W(real((r + e) * (r + e))) - K.W(real((r - e) * (r - e)))) / (2 * e);
-      // gradW = factor * r_vec, so dW/dr = factor * r
+      // gradW = factor * r_vec, so dW/dr = factor * r. The central difference errs by
+      // e^2 |W'''| / 6 (1e-6 relative) and by u W / e of rounding (6e-5 relative in single
+      // precision): 1e3 kRounding is 0.1% there (1e-6 in double); a wrong exponent or constant is O(1).
       EXPECT_NEAR(K.grad_factor(real(r * r)) * r, derivative, 1e3 * pbf::test::kRounding * std::fabs(derivative))
           << "r/h = " << q;
       real w, g;
       K.W_and_grad_factor(real(r * r), w, g);
+      // The same formula computed another way: a few u apart at most (10 kRounding is far above).
       EXPECT_NEAR(w, K.W(real(r * r)), 10 * pbf::test::kRounding * w);
       EXPECT_NEAR(g, K.grad_factor(real(r * r)), 10 * pbf::test::kRounding * std::fabs(g));
     }

@@ -78,6 +78,7 @@ TEST(Probe, ReadsAUniformFieldExactlyWhereverItIsWet) {
   for (std::size_t i = 0; i < P.size(); ++i) P.data(pressure)[i] = real(kRho0 * kG * (0.1 - P.z()[i]) + 3 * P.x()[i]);
   sim.add_compute(styles().make_compute("p", "probe", {{"points", Points{{0.045, 0.055, 0.035}, {0.05, 0.05, 0.05}}}}));
   const auto p = values(sim, "p");
+  // kRounding relative, of pressures up to 1 kPa (rho0 g 0.1 m): exact but for rounding.
   EXPECT_NEAR(p[0], kRho0 * kG * 0.065 + 3 * 0.045, test::kRounding * 1e3);
   EXPECT_NEAR(p[1], kRho0 * kG * 0.05 + 3 * 0.05, test::kRounding * 1e3);
   sim.add_compute(styles().make_compute("rho", "probe", {{"points", Points{{0.05, 0.05, 0.05}}}, {"field", std::string("density")}}));
@@ -153,7 +154,9 @@ void expect_hydrostatic(const Column& c, double bulk, double floor) {
 // 2%, WCSPH with the continuity density within 2%; gauges within 0.13 spacings of the surface
 // on average, 0.26 in the worst row.
 // Closer to the boundaries the particles' own pressures ripple (docs/physics.md, "Pressure in
-// PBF"; WCSPH's summed density is low near the surface): not checked here.
+// PBF"; WCSPH's summed density is low near the surface): not checked here. The bounds are the
+// measured errors with room; a pressure off by a factor (kappa, the wall's doubling, Shepard's
+// normalisation) is tens of percent off.
 TEST(Probe, PbfColumnReadsHydrostaticPressureAndItsHeight) {
   // Floor bound 25%: measured +19% (the wall layer's share and the contact's load are
   // estimates, docs/physics.md); bulk 7%: measured -6%.
@@ -195,7 +198,7 @@ TEST(Probe, SameBitsAtAnyThreadCount) {
   omp_set_num_threads(1);
   ASSERT_EQ(got[0].size(), got[1].size());
   EXPECT_EQ(std::memcmp(got[0].data(), got[1].data(), got[0].size() * sizeof(double)), 0);
-  EXPECT_GT(got[0][0], 100.0);  // a pressure was read, not a dry 0
+  EXPECT_GT(got[0][0], 100.0);  // a pressure was read, not a dry 0 (rho0 g 8 cm = 780 Pa at rest)
 }
 
 TEST(Probe, NamesFollowTheLabels) {

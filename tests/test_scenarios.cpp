@@ -38,11 +38,13 @@ TEST_P(Hydrostatic, ColumnStaysAtRest) {
     // constraint does not hold particles that lack neighbours), the first layer may come half
     // a spacing closer to the floor, and the column compresses by its average compression.
     EXPECT_GT(c["top"][k], top0 - 1.5 * s - 0.02 * H) << "t = " << c["time"][k];
-    // Average compression: 4 iterations leave about 1.5 percent; 3 percent fails the solver.
+    // Average compression: 4 iterations leave 2.5% (2000 particles) and 2.7% (5000), measured
+    // 2026-11-28 (docs/physics.md, "Iterations": 2.6%, growing with the column's depth in
+    // particles); 3% is where pbf warns that its step or count is too small for the fluid.
     EXPECT_LT(c["err.compression"][k], 0.03) << "t = " << c["time"][k];
     // Residual motion, against the free-fall speed over the column, sqrt(2 g H) = 2.8 m/s:
-    // the solver leaves particles jostling at about 2% of it on average (docs/physics.md);
-    // a collapse or a slosh moves the whole column at a good fraction of it.
+    // the solver leaves particles jostling at 0.5% of it on average and 4% at most (measured
+    // 2026-11-28); a collapse or a slosh moves the whole column at a good fraction of it.
     EXPECT_LT(c["v.avg"][k], 0.04 * std::sqrt(2 * g * H)) << "t = " << c["time"][k];
     EXPECT_LT(c["v.max"][k], 0.25 * std::sqrt(2 * g * H)) << "t = " << c["time"][k];
     EXPECT_GE(c["box.zmin"][k], 0.0);
@@ -112,11 +114,19 @@ TEST(DamBreak, SurgesForwardWithoutLosingParticles) {
   auto c = read_csv(dir / "out" / "thermo.csv");
   const double a = 0.1, g = 9.81;
   ASSERT_GT(c["time"].size(), 5u);
-  EXPECT_NEAR(c["front"].front() / a, 1.0, 0.05);
-  // By T = t sqrt(2g/a) = 2 the front has clearly left the column (Martin & Moyce: Z = 2.35).
+  EXPECT_NEAR(c["front"].front() / a, 1.0, 0.05);  // the 99th percentile of x: 1 - 0.5 s / a = 0.96
+  // By T = t sqrt(2g/a) = 2 the front has clearly left the column (Martin & Moyce: Z = 2.33 at
+  // T = 1.98 and 2.56 at 2.20, read to 0.11; measured 2.45 at T = 2.09).
   const double T = c["time"].back() * std::sqrt(2 * g / a);
   ASSERT_GT(T, 2.0);
   EXPECT_GT(c["front"].back() / a, 2.0);
+  // And no further than Ritter's dam break in shallow water, whose front runs at 2 sqrt(g H) from
+  // t = 0 (H = 2a): Z <= 1 + 2 sqrt(2 g a) t / a = 1 + 2T. A real column must fall first; its front
+  // lags (Martin & Moyce: Z = 4.11 at T = 3.33, against 7.66). Measured Z = 1.33 at T = 1.04
+  // (bound 3.09), 2.45 at 2.09 (5.18): loose (the advance Z - 1 is a third of Ritter's), it
+  // catches a front that runs away (particles shot ahead, gravity or pressure several times too strong).
+  for (std::size_t k = 0; k < c["time"].size(); ++k)
+    EXPECT_LE(c["front"][k] / a, 1 + 2 * c["time"][k] * std::sqrt(2 * g / a)) << "t = " << c["time"][k];
   // The last frame still holds every particle.
   std::string last;
   for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
