@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -138,4 +139,25 @@ TEST(GhostCheck, AMissedRefreshOfAChangedFieldChangesTheBits) {
   double most = 0;
   for (std::size_t i = 0; i < a.size(); ++i) most = std::max(most, std::fabs(double(a.vx()[i]) - double(b.vx()[i])));
   EXPECT_GT(most, 0.0) << "the stale copies went unnoticed";
+}
+
+// The command line's switch, on the MPI tests' dam break (tests/mpi/dambreak.lua: PBF with
+// vorticity, XSPH, box walls and a solid block, and outputs that read neighbours: the dumped
+// density and |omega|, probes, gauges, the solid's load): every file it writes is the same.
+TEST(GhostCheck, TheCommandLinesSwitchGivesThePlainRunsFiles) {
+  const auto dir = temp_dir("ghost-check-cli");
+  const std::string script = std::string(PBF_SOURCE_DIR) + "/tests/mpi/dambreak.lua";
+  for (const std::string run : {"plain", "checked"}) {
+    const auto result = run_engine(std::string("run ") + (run == "checked" ? "--check-ghosts " : "") + script +
+                                   " -v steps=60 -v out=" + (dir.path() / run).string());
+    ASSERT_EQ(result.code, 0) << result.output;
+  }
+  int files = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.path() / "plain")) {
+    if (!entry.is_regular_file()) continue;
+    const auto relative = std::filesystem::relative(entry.path(), dir.path() / "plain");
+    EXPECT_EQ(read_file(entry.path()), read_file(dir.path() / "checked" / relative)) << relative;
+    ++files;
+  }
+  EXPECT_GE(files, 6);  // two text frames, two VTK frames and their collection, probes, thermo
 }
