@@ -534,38 +534,40 @@ pbf.write_restart(var.final)
       << changed.output;
 }
 
-// The restart fix writes on its schedule, and only then: `every = 10` over two runs of 15 and
-// 20 steps writes the restarts of steps 10, 20 and 30 (the schedule goes on across runs), each
-// holding its step, and `keep = 2` leaves the newest two. A schedule that stopped advancing
-// once due would write at every step after the 10th.
+// The restart fix writes on its schedule, and only then: `every = 10`, or `interval` = 10 steps'
+// time, over two runs of 15 and 20 steps writes the restarts of steps 10, 20 and 30 (the
+// schedule goes on across runs), each holding its step, and `keep = 2` leaves the newest two.
+// An interval schedule that stopped advancing once due would write at every step after the 10th.
 TEST(Restart, ThePeriodicFixWritesOnItsScheduleAndKeepsTheNewest) {
-  for (const std::int64_t keep : {std::int64_t{100}, std::int64_t{2}}) {
-    const auto dir = temp_dir("restart-schedule");
-    Simulation sim;
-    sim.set_domain(Domain{{0, 0, 0}, {0.1, 0.1, 0.1}});
-    sim.set_kernel_radius(0.02);
-    sim.set_timestep(0.002);
-    const double lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0.05}, v[3] = {0, 0, 0};
-    add_lattice(sim, lo, hi, 0.01, v);
-    const auto& styles = StyleRegistry::builtin();
-    sim.add_fix(styles.make_fix("gravity", "gravity", {}));
-    sim.add_fix(styles.make_fix("pbf", "pbf", {}));
-    sim.add_fix(styles.make_fix("walls", "box", {}));
-    sim.add_fix(styles.make_fix("restarts", "restart",
-                                {{"path", (dir.path() / "r.*.restart").string()}, {"every", std::int64_t{10}},
-                                 {"keep", keep}}));
-    sim.run(15);
-    sim.run(20);
-    std::vector<std::int64_t> steps;
-    for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
-      Simulation read;
-      read_restart(read, entry.path().string());
-      steps.push_back(read.step());
-      EXPECT_NE(entry.path().filename().string().find(std::to_string(read.step())), std::string::npos)
-          << entry.path() << " holds step " << read.step();
+  for (const bool by_time : {false, true})
+    for (const std::int64_t keep : {std::int64_t{100}, std::int64_t{2}}) {
+      const auto dir = temp_dir("restart-schedule");
+      Simulation sim;
+      sim.set_domain(Domain{{0, 0, 0}, {0.1, 0.1, 0.1}});
+      sim.set_kernel_radius(0.02);
+      sim.set_timestep(0.002);
+      const double lo[3] = {0, 0, 0}, hi[3] = {0.05, 0.05, 0.05}, v[3] = {0, 0, 0};
+      add_lattice(sim, lo, hi, 0.01, v);
+      const auto& styles = StyleRegistry::builtin();
+      sim.add_fix(styles.make_fix("gravity", "gravity", {}));
+      sim.add_fix(styles.make_fix("pbf", "pbf", {}));
+      sim.add_fix(styles.make_fix("walls", "box", {}));
+      GivenParams params = {{"path", (dir.path() / "r.*.restart").string()}, {"keep", keep}};
+      if (by_time) params.push_back({"interval", 10 * 0.002});
+      else params.push_back({"every", std::int64_t{10}});
+      sim.add_fix(styles.make_fix("restarts", "restart", params));
+      sim.run(15);
+      sim.run(20);
+      std::vector<std::int64_t> steps;
+      for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+        Simulation read;
+        read_restart(read, entry.path().string());
+        steps.push_back(read.step());
+        EXPECT_NE(entry.path().filename().string().find(std::to_string(read.step())), std::string::npos)
+            << entry.path() << " holds step " << read.step();
+      }
+      std::sort(steps.begin(), steps.end());
+      EXPECT_EQ(steps, keep == 2 ? std::vector<std::int64_t>({20, 30}) : std::vector<std::int64_t>({10, 20, 30}))
+          << (by_time ? "by time" : "by steps") << ", keep = " << keep;
     }
-    std::sort(steps.begin(), steps.end());
-    EXPECT_EQ(steps, keep == 2 ? std::vector<std::int64_t>({20, 30}) : std::vector<std::int64_t>({10, 20, 30}))
-        << "keep = " << keep;
-  }
 }

@@ -433,12 +433,17 @@ def expected(mu: Mutant, all_tests: bool) -> str:
     return text + (" (ran the whole suite)" if all_tests else "")
 
 
+def cell(text: str) -> str:
+    """Text for a table cell: a '|' (|omega|, in code spans too) would end the cell."""
+    return text.replace("|", "\\|")
+
+
 def write_report(path: Path, header: list[str], rows: list[Row], all_tests: bool) -> None:
     lines = list(header)
     lines += ["", "| id | where | mutant | expected killer | result | killing tests | seconds |",
               "|---|---|---|---|---|---|---|"]
     for r in rows:
-        mutant = f"{code(r.mu.find)} → {code(r.mu.replace)}: {r.mu.what}"
+        mutant = cell(f"{code(r.mu.find)} → {code(r.mu.replace)}: {r.mu.what}")
         killers = ", ".join(code(k) for k in r.killers) if r.killers else "—"
         lines.append(f"| {r.mu.id} | {code(r.where)} | {mutant} | {expected(r.mu, all_tests)} | "
                      f"**{r.result}** | {killers} | {r.seconds:.0f} |")
