@@ -23,6 +23,8 @@ Cases:
               written by one process, continued on 3 (each rank reads its share of the
               records): the later frames are those of the run that never stopped; a damaged
               one is refused once.
+  restart_wcsph  the same for WCSPH with the continuity density and cfl (state beyond
+              positions and velocities): written on 3 ranks, continued on 2 and on 1.
   script_error  an error every rank meets (an unknown style): one message, exit code 1.
   rank_error  an error only rank 1 meets, while the others wait in a collective call: its
               message, naming the rank, once; exit code 1; no rank left running.
@@ -241,6 +243,37 @@ def restart(args, work):
           f"{', '.join(later)} identical to the straight run")
 
 
+def restart_wcsph(args, work):
+    """WCSPH's state across a restart and a change of rank count: the leapfrog's accelerations,
+    the continuity density and the cfl fix's step, written on 3 ranks, continued on 2 and on 1."""
+    scenario = os.path.join(HERE, "..", "..", "scenarios", "dambreak.lua")
+    common = {"solver": "wcsph", "particles": 1500, "t_end": 0.15, "interval": 0.03, "density": "continuity",
+              "restart_every": 300}
+    runs = [(1, "straight", {}), (3, "first", {})]
+    for ranks, out, extra in runs:
+        result = run(args, ranks, scenario, dict(common, out=os.path.join(work, out), **extra), work)
+        if result.returncode != 0:
+            fail(f"{out} on {ranks} rank(s): exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+    saved = os.path.join(work, "first", "restart.600.restart")
+    if not os.path.exists(saved):
+        fail(f"the run on 3 ranks wrote no restart of step 600: {sorted(os.listdir(os.path.join(work, 'first')))}")
+    compared = []
+    for ranks, out in ((2, "on2"), (1, "on1")):
+        result = run(args, ranks, scenario, dict(common, out=os.path.join(work, out), restart=saved), work)
+        if result.returncode != 0:
+            fail(f"{out}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+        frames = sorted(f for f in os.listdir(os.path.join(work, out)) if f.startswith("frame_"))
+        if len(frames) < 2:
+            fail(f"the run continued {out} wrote {frames}: expected the frames after step 600")
+        for name in frames:
+            a, b = os.path.join(work, "straight", name), os.path.join(work, out, name)
+            if not filecmp.cmp(a, b, shallow=False):
+                fail(f"{name} of the WCSPH run continued {out} differs from the run that never stopped")
+        compared = frames
+    print(f"WCSPH (continuity density, cfl): written on 3 ranks at step 600, continued on 2 and on 1: "
+          f"{', '.join(compared)} identical to the straight run")
+
+
 def expect_failure(result, needle, name):
     if result.returncode == 0:
         fail(f"{name}: exit code 0\n{result.stdout}\n{result.stderr}")
@@ -382,7 +415,8 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "script_error",
+                        choices=["identical", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
+                                 "script_error",
                                  "rank_error", "per_particle", "signals"])
     args = parser.parse_args()
     args.binary = os.path.abspath(args.binary)
