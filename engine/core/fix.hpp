@@ -2,7 +2,9 @@
 // A fix is one style instance in the step pipeline (LAMMPS's word): it names the stages
 // it joins and implements a hook for each. The run loop calls and times the hooks; a fix
 // never times itself.
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,6 +70,13 @@ class Fix {
   // Start of every run: declare fields (Particles::declare; a field no fix declares in this
   // round is freed), precompute constants, write initial output.
   virtual void init(Simulation&) {}
+  // Start of every run, after the init() of every fix but the outputs, which come after it:
+  // the particles created since the last run started (a lattice or a file added between
+  // runs; all of them at the first run), by index. Their fields hold 0. A fix whose field
+  // carries a value from step to step sets theirs to where a fluid at rest starts (wcsph's
+  // continuity density: rest density); a field computed before it is read needs nothing.
+  // Called on every rank of a distributed run (a rank may have none), so it may be collective.
+  virtual void init_new_particles(Simulation&, std::span<const std::uint32_t> /*fresh*/) {}
   virtual void external_forces(Simulation&) {}
   virtual void predict(Simulation&) {}
   virtual void forces(Simulation&) {}

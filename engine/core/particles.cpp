@@ -108,6 +108,11 @@ std::size_t Particles::remove(const std::vector<char>& drop) {
       component.resize(kept.size());
     }
   ids_.resize(kept.size());
+  // The renumbering keeps the ids' order, so the started particles keep the lowest ids: as
+  // many as remain of them.
+  std::int64_t started_removed = 0;
+  for (std::size_t i = 0; i < n; ++i) started_removed += drop[i] && old_ids[i] < settled_;
+  settled_ -= distributed_ ? comm::sum(started_removed) : started_removed;
   if (distributed_) {
     renumber_across_ranks(old_ids, drop);
     return n - kept.size();
@@ -241,7 +246,7 @@ void Particles::reset(std::vector<std::int64_t> ids) {
   }
   ghosts_ = 0;
   ids_ = std::move(ids);
-  next_id_ = static_cast<std::int64_t>(ids_.size());
+  next_id_ = settled_ = static_cast<std::int64_t>(ids_.size());  // their fields are the file's
   global_ = ids_.size();
   unplaced_ = distributed_ ? global_ : 0;
   for (auto& field : fields_)
@@ -254,7 +259,7 @@ void Particles::reset_share(std::vector<std::int64_t> ids, std::size_t global) {
       throw Error(fmt::format("particle ids must lie in 0..{}; found {}", global - 1, id));
   ghosts_ = 0;
   ids_ = std::move(ids);
-  next_id_ = static_cast<std::int64_t>(global);
+  next_id_ = settled_ = static_cast<std::int64_t>(global);
   global_ = global;
   unplaced_ = global;
   for (auto& field : fields_)

@@ -76,6 +76,11 @@ class Particles {
   // The id the next particle added takes: the count of particles ever created on all ranks.
   std::int64_t next_id() const { return next_id_; }
   void set_next_id(std::int64_t id) { next_id_ = id; }
+  // Particles with ids from this one on were created since the last run started (their
+  // fields are zero until the fixes set them: Fix::init_new_particles); settle() marks
+  // every particle there now as started.
+  std::int64_t first_new_id() const { return settled_; }
+  void settle() { settled_ = next_id_; }
   // Zeroed particles with these ids after this rank's own (no ghosts may be there).
   void append(std::span<const std::int64_t> ids);
   // Removes the particles whose `drop` entry is non-zero, keeping the others' order and ids.
@@ -159,7 +164,7 @@ class Particles {
   std::vector<Field> fields_;
   std::vector<std::int64_t> ids_;
   std::size_t ghosts_ = 0, global_ = 0, unplaced_ = 0;
-  std::int64_t next_id_ = 0;
+  std::int64_t next_id_ = 0, settled_ = 0;
   bool distributed_ = false;
   void renumber_across_ranks(const std::vector<std::int64_t>& old_ids, const std::vector<char>& drop);
   void resize_all(std::size_t n);  // every live field and the ids

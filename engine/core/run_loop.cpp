@@ -46,10 +46,13 @@ void RunLoop::prepare() {
       std::any_of(sim_.fixes_.begin(), sim_.fixes_.end(), [](const auto& f) { return f->needs_neighbors(); }))
     separate_coincident(sim_);
   // Every fix declares the fields it uses; the outputs start last, after the fields no fix
-  // declared are freed, so that they see what this run has.
+  // declared are freed and the new particles' fields are set, so that they see what this run has.
   P.begin_declarations();
   for (Role role : kRoles) {
-    if (role == Role::output) P.free_undeclared();
+    if (role == Role::output) {
+      P.free_undeclared();
+      init_new_particles();
+    }
     for (const auto& f : sim_.fixes_) {
       if (f->role() != role) continue;
       try {
@@ -93,6 +96,20 @@ void RunLoop::prepare() {
   }
   row_thermo_ = timing_.row("end_of_step", "thermo");
   row_checks_ = timing_.row("checks", "non-finite values, domain");
+}
+
+// The particles created since the last run started (ids from Particles::first_new_id() on) get
+// their fields from the fixes that declared them; then every particle counts as started.
+void RunLoop::init_new_particles() {
+  auto& P = sim_.particles_;
+  std::vector<std::uint32_t> fresh;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (P.ids()[i] >= P.first_new_id()) fresh.push_back(static_cast<std::uint32_t>(i));
+  const auto found = static_cast<std::int64_t>(fresh.size());
+  if ((P.distributed() ? comm::sum(found) : found) > 0)
+    for (const auto& f : sim_.fixes_)
+      if (f->role() != Role::output) f->init_new_particles(sim_, fresh);
+  P.settle();
 }
 
 // A run on several ranks: the particles created since the last run (each rank's shares of the

@@ -33,6 +33,7 @@ class RunLoop {
   void check_start_state() const;
   void check_pipeline() const;
   void distribute();
+  void init_new_particles();
   void step();
   void run_stage(Stage stage, int iteration = 0);
   void call(Stage stage, Fix& fix, int iteration);

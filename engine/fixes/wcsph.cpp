@@ -82,19 +82,20 @@ class Wcsph : public Fix {
     if (c0_ == 0) c0_ = default_sound_speed(sim, gravity_);  // once: a restart keeps it
     if (c0_ == 0)
       throw Error("parameter 'gravity' is 0, so the default sound speed 10 sqrt(2 g H) is 0: give 'sound_speed'");
-    // A new field holds, before the first step, the density the solver starts from: rest
-    // density for the continuity equation (p = 0), the SPH sum for the summation.
-    if (fresh) {
-      if (continuity) {
-        std::fill(P.data(rho_), P.data(rho_) + P.size(), real(sim.rest_density()));
-      } else {
-        sim.refresh_neighbors();  // in a distributed run it adds ghosts, which moves the arrays
-        const auto& summed = sim.summed_density();
-        std::copy(summed.begin(), summed.end(), P.data(rho_));
-      }
-    }
+    // A new field holds, before the first step, the density the solver starts from (below).
+    filled_ = fresh;
+    if (fresh) start_density(sim, {}, true);
     // The pressure of the density the run starts from: the field is recomputed before each
     // step reads it, but probes and dumps at the start of a run read it as it is.
+    pressure_from_density(sim, P.data(rho_), P.data(pressure_));
+  }
+
+  // Particles added between runs start as a new field does (an integrated density of 0 would
+  // be a vacuum, the pressure force pulling them apart: NaN within a step).
+  void init_new_particles(Simulation& sim, std::span<const std::uint32_t> fresh) override {
+    if (filled_) return;  // init just set every particle's
+    start_density(sim, fresh, false);
+    auto& P = sim.particles();
     pressure_from_density(sim, P.data(rho_), P.data(pressure_));
   }
 
@@ -200,6 +201,24 @@ class Wcsph : public Fix {
                                                  c0_, fastest, sim.kernel_radius()));
   }
 
+  // The density a particle starts from: rest density for the continuity equation (p = 0), the
+  // SPH sum for the summation; of every particle, or of those `only` lists (collective: on
+  // every rank, with none listed on some).
+  void start_density(Simulation& sim, std::span<const std::uint32_t> only, bool every) const {
+    auto& P = sim.particles();
+    const std::size_t n = every ? P.size() : only.size();
+    auto index = [&](std::size_t k) { return every ? k : std::size_t{only[k]}; };
+    if (density_ == "continuity") {
+      real* rho = P.data(rho_);
+      for (std::size_t k = 0; k < n; ++k) rho[index(k)] = real(sim.rest_density());
+      return;
+    }
+    sim.refresh_neighbors();  // collective; in a distributed run it adds ghosts, which moves the arrays
+    const auto& summed = sim.summed_density();
+    real* rho = P.data(rho_);
+    for (std::size_t k = 0; k < n; ++k) rho[index(k)] = summed[index(k)];
+  }
+
   void pressure_from_density(const Simulation& sim, const real* rho, real* p) const {
     const std::size_t n = sim.particles().size();
     const real rho0 = real(sim.rest_density());
@@ -249,6 +268,7 @@ class Wcsph : public Fix {
   bool keep_negative_;
   double max_error_;
   FieldId rho_ = 0, pressure_ = 0, accel_ = 0;
+  bool filled_ = false;  // this run's init set every particle's density
   std::vector<real> drho_;
   CompressionWatch compression_watch_;
 };
