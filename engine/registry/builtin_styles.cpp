@@ -14,6 +14,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_sph_viscosity(r);
   register_leapfrog(r);
   register_cfl(r);
+  register_damping(r);
   register_dump_text(r);
   register_dump_vtk(r);
   register_dump_image(r);

@@ -23,6 +23,7 @@ void register_box(StyleRegistry&);
 void register_solid(StyleRegistry&);
 void register_vorticity(StyleRegistry&);
 void register_xsph(StyleRegistry&);
+void register_damping(StyleRegistry&);
 void register_dump_text(StyleRegistry&);
 void register_dump_vtk(StyleRegistry&);
 void register_dump_image(StyleRegistry&);

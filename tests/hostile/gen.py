@@ -100,6 +100,8 @@ WCSPH_PIPE = {
 EXTRA = {
     "vorticity": ('pbf.fix("vorticity", "vorticity", {%s})', []),
     "xsph": ('pbf.fix("xsph", "xsph", {%s})', []),
+    # A damping zone over the far end of the fluid block, along x.
+    "damping": ('pbf.fix("zone", "damping", {%s})', [("from", "{0.05, 0, 0}"), ("to", "{0.1, 0, 0}")]),
     "dump/text": ('pbf.fix("frames", "dump/text", {%s})', [("path", '"out/f_*.txt"'), ("every", "1")]),
     "dump/vtk": ('pbf.fix("frames", "dump/vtk", {%s})', [("path", '"out/f_*.vtu"'), ("every", "1")]),
     "dump/image": ('pbf.fix("pictures", "dump/image", {%s})',
@@ -190,6 +192,12 @@ NUMERIC = [
     ("vorticity", "epsilon", "num", "RRRARR", [], "0 is no confinement; a negative one damps the wrong way; "
      "1e300 turns round-off vorticity into accelerations no step survives"),
     ("xsph", "c", "num", "RRRARR", [], "a smoothing fraction in [0, 1]"),
+    ("damping", "rate", "num", "RRRRRR", [], "a relaxation rate in (0, 1e6] per second: 0 damps nothing, a "
+     "negative one accelerates, 1e300 is no rate"),
+    ("damping", "from", "vec", "RRRAAR", [], "the zone's start, any point up to 1e6 m away ({0,0,0} and "
+     "{-1,-1,-1} start it before the fluid, legal); 1e300 is beyond any scene"),
+    ("damping", "to", "vec", "RRRAAR", [], "where it is full, any point other than 'from' up to 1e6 m away "
+     "({0,0,0}, {-1,-1,-1}: a zone growing toward -x, legal); 1e300 is beyond any scene"),
     ("wcsph", "gamma", "num", "RRRRRR", [], "the Tait exponent is >= 1; 1e300 overflows (rho/rho0)^gamma"),
     ("wcsph", "sound_speed", "num", "RRRARR", [], "0 is the default c0; 1e300 m/s overflows rho0 c0^2"),
     ("wcsph", "gravity", "num", "RRRRAR", [],
