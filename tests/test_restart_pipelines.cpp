@@ -70,5 +70,6 @@ TEST_P(Continued, EndsBitForBitAsTheStraightRun) {
 
 INSTANTIATE_TEST_SUITE_P(RestartPipelines, Continued,
                          ::testing::Values("PbfVorticityXsph", "WcsphSummationLeapfrogArtificialViscosity",
-                                           "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid", "SampleProbesGauge"),
+                                           "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid", "SampleProbesGauge",
+                                           "WcsphLaplacianViscosityXsph"),
                          [](const auto& info) { return std::string(info.param); });

@@ -1,5 +1,5 @@
 -- tests/mpi/dambreak.lua: a small PBF dam break (gravity, pbf, vorticity, xsph, box walls, a
--- solid block) for the distributed-run tests (tests/mpi/run.py). The column starts in the
+-- solid block, a damping zone at the far end) for the distributed-run tests (tests/mpi/run.py). The column starts in the
 -- first 3/8 of the tank and reaches its far wall, so it crosses every cut the decomposition makes among 2 or 3
 -- ranks (all of which start inside the column), and the boxes are rebalanced as it goes.
 -- Writes OUT/f_*.txt (dump/text: id, position, velocity, the density and the vorticity's
@@ -22,6 +22,8 @@ pbf.fix("pbf", "pbf", {error = 0.002, max_iterations = 20})
 pbf.fix("vorticity", "vorticity", {})
 pbf.fix("xsph", "xsph", {})
 pbf.fix("walls", "box", {})
+-- A damping zone over the tank's far end, which the front reaches.
+pbf.fix("zone", "damping", {from = {0.6, 0, 0}, to = {0.8, 0, 0}, rate = 20})
 -- A block in the column, across the first cut (x = 0.15 at 2 ranks): its particles meet the
 -- wall on both sides of it, and its load sums both ranks' pushes.
 pbf.fix("block", "solid", {shape = "box", lo = {0.1, 0.06, 0}, hi = {0.2, 0.14, 0.1}})
