@@ -99,6 +99,7 @@ TEST(Params, EveryDefaultIsInItsRange) {
         else if (p.type == ParamType::StringList) defaults.emplace_back(p.name, Names{"name"});
         else if (p.type == ParamType::PointList) defaults.emplace_back(p.name, Points{{0, 0, 0}});
         else if (p.type == ParamType::Real) defaults.emplace_back(p.name, 1.0);
+        else if (p.type == ParamType::Vector3) defaults.emplace_back(p.name, Vec3{0, 0, 0});
         else FAIL() << s.name << "." << p.name << ": give this test a value of its type";
       }
     }

@@ -514,3 +514,33 @@ TEST(Wcsph, ThePressureIsTheTaitEquationOfTheDensity) {
     EXPECT_GE(compressed, 4 * 4 * 4);  // the inner particles, 2 spacings (h) from the surface
   }
 }
+
+// cfl's viscous limit: with the Laplacian viscosity's nu the step is at most
+// 0.125 (h/2)^2 / nu (Morris et al. 1997, h/2 the smoothing length). A block at rest, no
+// gravity, sound speed 1 m/s (Courant bound 0.15 h / c0 = 3 ms) and nu = 0.01 m^2/s (viscous
+// bound 1.25 ms): the viscous one decides, to rounding; with the artificial form instead it
+// does not apply, and the Courant bound decides.
+TEST(Wcsph, CflKeepsTheStepUnderTheViscousLimit) {
+  for (const std::string kind : {"laplacian", "artificial"}) {
+    pbf::Simulation sim;
+    sim.set_domain(pbf::Domain{{0, 0, 0}, {0.2, 0.2, 0.2}});
+    sim.set_kernel_radius(0.02);
+    sim.set_timestep(0.01);
+    const double lo[3] = {0.06, 0.06, 0.06}, hi[3] = {0.14, 0.14, 0.14}, v[3] = {0, 0, 0};
+    pbf::add_lattice(sim, lo, hi, 0.01, v);
+    const auto& styles = pbf::StyleRegistry::builtin();
+    sim.add_fix(styles.make_fix("integrator", "leapfrog", {}));
+    sim.add_fix(styles.make_fix("wcsph", "wcsph", {{"sound_speed", 1.0}}));
+    sim.add_fix(styles.make_fix("viscosity", "sph_viscosity", {{"kind", kind}, {"nu", 0.01}}));
+    sim.add_fix(styles.make_fix("cfl", "cfl", {}));
+    sim.run(1);
+    // The Courant bound with the speed the first step gave (the block's surface starts to move).
+    const auto& P = sim.particles();
+    double fastest = 0;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      fastest = std::max(fastest, std::sqrt(double(P.vx()[i]) * P.vx()[i] + double(P.vy()[i]) * P.vy()[i] +
+                                            double(P.vz()[i]) * P.vz()[i]));
+    const double h = 0.02, viscous = 0.125 * (h / 2) * (h / 2) / 0.01, courant = 0.15 * h / (1.0 + fastest);
+    EXPECT_NEAR(sim.timestep(), kind == "laplacian" ? viscous : courant, 1e-12) << kind;
+  }
+}

@@ -48,6 +48,9 @@ class Fix {
   // The fastest signal this fix's physics carries (a weakly compressible solver's sound
   // speed, m/s; 0: none): time-step control keeps dt below h over it.
   virtual double signal_speed() const { return 0; }
+  // The kinematic viscosity (m^2/s) the fix applies explicitly, for the viscous limit of
+  // time-step control (0: none).
+  virtual double kinematic_viscosity() const { return 0; }
   // How this fix moves particles through time, if it does (at most one fix per pipeline).
   virtual Integration integration() const { return Integration::none; }
   // Whether this fix adds to the "acceleration" field, which needs an integrator of

@@ -184,6 +184,12 @@ double Simulation::max_signal_speed() const {
   return c;
 }
 
+double Simulation::max_kinematic_viscosity() const {
+  double nu = 0;
+  for (const auto& f : fixes_) nu = std::max(nu, f->kinematic_viscosity());
+  return nu;
+}
+
 Fix* Simulation::find_fix(const std::string& id) const {
   for (const auto& f : fixes_)
     if (f->id() == id) return f.get();

@@ -110,8 +110,10 @@ class Simulation {
   // The pipeline's queries, one place each:
   // the fix that moves particles through time (pbf, leapfrog), or nullptr;
   const Fix* integrator() const;
-  // the fastest signal any fix's physics carries (m/s; 0: none), for time-step control.
+  // the fastest signal any fix's physics carries (m/s; 0: none), for time-step control;
   double max_signal_speed() const;
+  // the largest kinematic viscosity a fix applies explicitly (m^2/s; 0: none), likewise.
+  double max_kinematic_viscosity() const;
 
   // Runs `steps` steps; may be called again, with the pipeline changed in between.
   void run(std::int64_t steps);

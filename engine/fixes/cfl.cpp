@@ -1,10 +1,14 @@
 // cfl: time-step control, for explicit solvers (WCSPH) and for PBF. At the end of every step
 // (and when a run starts) it sets the next step's size to
-//   dt = min(max_dt, courant h / (c + |v|max), force sqrt(h / |a|max), dt_solver)
+//   dt = min(max_dt, courant h / (c + |v|max), force sqrt(h / |a|max), viscous h_s^2 / nu, dt_solver)
 // with h the kernel support radius, c the largest signal speed of the pipeline's fixes (the
 // wcsph sound speed; none for pbf) unless given, |a|max from the integrator's "acceleration"
 // field, and |v|max the fastest particle or moving solid (over the step now set), so a wall
-// moves less than a fraction of h in a step.
+// moves less than a fraction of h in a step. The viscous limit (Morris et al. 1997, with
+// viscous = 0.125 and h_s = h / 2 the smoothing length) holds an explicit viscosity nu (the
+// largest a fix applies: sph_viscosity's Laplacian form) below the step at which momentum
+// diffuses farther than the kernel in one step; with water's nu it is seconds, and matters
+// only for viscous fluids and fine resolutions.
 //
 // dt_solver (only with `iterations`) is the largest step in which the constraint solver meets
 // its accuracy target (pbf's `error`) within N = `iterations` iterations. With n the
@@ -44,6 +48,7 @@ class Cfl : public Fix {
         max_dt_(p.real("max_dt")),
         c_(p.real("sound_speed")),
         align_(p.real("align")),
+        viscous_(p.real("viscous")),
         target_iterations_(static_cast<int>(p.integer("iterations"))) {}
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
@@ -124,6 +129,7 @@ class Cfl : public Fix {
     double dt = watches_solver() ? std::min(max_dt_, solver_dt_) : max_dt_;
     if (c + std::sqrt(v2) > 0) dt = std::min(dt, courant_ * h / (c + std::sqrt(v2)));
     if (a2 > 0) dt = std::min(dt, force_ * std::sqrt(h / std::sqrt(a2)));
+    if (const double nu = sim.max_kinematic_viscosity(); nu > 0) dt = std::min(dt, viscous_ * (h / 2) * (h / 2) / nu);
     if (align_ > 0) {
       // The next multiple of align after now; a remainder far below a step counts as reached.
       const double elapsed = sim.time() - start_;
@@ -134,7 +140,7 @@ class Cfl : public Fix {
     if (dt != sim.timestep()) sim.set_timestep(dt);
   }
 
-  double courant_, force_, max_dt_, c_, align_;
+  double courant_, force_, max_dt_, c_, align_, viscous_;
   int target_iterations_;
   bool started_ = false;
   double start_ = 0, solver_dt_ = 0;
@@ -145,11 +151,16 @@ class Cfl : public Fix {
 void register_cfl(StyleRegistry& r) {
   r.add({"cfl",
          StyleKind::fix,
-         "time-step control: dt = min(max_dt, courant h/(c + |v|max), force sqrt(h/|a|max), solver bound), chosen every step",
+         "time-step control: dt = min(max_dt, courant h/(c + |v|max), force sqrt(h/|a|max), viscous (h/2)^2/nu, "
+         "solver bound), chosen every step",
          {ParamSpec{"courant", ParamType::Real, 0.15, "",
                     "Courant number on h / (c + |v|max), h the support radius (above 1 a step outruns the signal)"}
               .above_within(0, 1),
           ParamSpec{"force", ParamType::Real, 0.15, "", "factor of the force criterion sqrt(h / |a|max)"}.above_within(0, 1),
+          ParamSpec{"viscous", ParamType::Real, 0.125, "",
+                    "factor of the viscous limit (h/2)^2 / nu, nu the largest explicit viscosity (sph_viscosity's "
+                    "Laplacian nu)"}
+              .above_within(0, 1),
           ParamSpec{"max_dt", ParamType::Real, 0.0, "s", "largest step (0: the time step the script set)"}.at_least(0),
           ParamSpec{"sound_speed", ParamType::Real, 0.0, "m/s", "c (0: the largest signal speed of the fixes, wcsph's c0)"}
               .within(0, kMostSoundSpeed),

@@ -77,6 +77,9 @@ class SphViscosity : public Fix {
 
  private:
   // c0: the parameter, or the largest signal speed of the pipeline (wcsph's sound speed).
+  // The Laplacian form's nu; the artificial form's stability is the Courant condition's, whose
+  // signal speed c0 it scales with (Monaghan 1992).
+  double kinematic_viscosity() const override { return artificial_ ? 0 : nu_; }
   double sound_speed(const Simulation& sim) const { return c0_ > 0 ? c0_ : sim.max_signal_speed(); }
 
   bool artificial_;

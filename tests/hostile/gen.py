@@ -210,6 +210,7 @@ NUMERIC = [
     ("sph_viscosity", "sound_speed", "num", "RRRARR", [], "0 is the wcsph c0; 1e300 m/s blows the step up"),
     ("cfl", "courant", "num", "RRRRRR", [], "a Courant number in (0, 1]: 1e300 is no time-step control"),
     ("cfl", "force", "num", "RRRRRR", [], "a factor in (0, 1]: 1e300 is no time-step control"),
+    ("cfl", "viscous", "num", "RRRRRR", [], "a factor in (0, 1]: 0 stops time, 1e300 is no viscous limit"),
     ("cfl", "max_dt", "num", "RRRARA", [], "0 is the script's dt; 1e300 s is only a bound the CFL rule undercuts"),
     ("cfl", "sound_speed", "num", "RRRARR", [], "0 is wcsph's c0; 1e300 m/s gives steps of 3e-303 s"),
     ("cfl", "align", "num", "RRRARA", [], "0 is no alignment; 1e300 s aligns on nothing in this run, legal"),
