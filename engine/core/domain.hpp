@@ -8,6 +8,9 @@ namespace pbf {
 struct Domain {
   double lo[3] = {0, 0, 0};
   double hi[3] = {1, 1, 1};
+  // Axes along which the domain repeats: a particle that leaves through one face comes back
+  // through the opposite one, and pairs see each other across the faces.
+  bool periodic[3] = {false, false, false};
 
   // Compared in the particle data's precision, as walls clamp positions to real(lo), real(hi).
   bool contains(real x, real y, real z) const {
