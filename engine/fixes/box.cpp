@@ -91,7 +91,7 @@ class Box : public Fix, public DensityBoundary {
 
   void init(Simulation& sim) override {
     if (wall_density_) prepare(sim);
-    const double spacing = lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+    const double spacing = lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
     contact_ = contact_spacings_ * spacing;
     const Domain& d = sim.domain();
     for (int a = 0; a < 3; ++a)

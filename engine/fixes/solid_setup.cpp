@@ -121,13 +121,13 @@ void SolidFix::prepare_scene(Simulation& sim) {
       ++moved;
     }
   }
-  // (In a distributed run the ids are renumbered across the ranks, and the counts summed.)
+  // (The others keep their ids; in a distributed run the counts are summed.)
   std::size_t removed = P.remove(drop);
   if (P.distributed()) {
     removed = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(removed)));
     moved = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(moved)));
   }
-  if (sim.global_count() == 0)
+  if (removed > 0 && sim.global_count() == 0)
     throw Error(fmt::format("solid '{}' ({} it) leaves no particle: every one was created inside the wall", id(),
                             fluid_inside_ ? "fluid inside" : "fluid outside"));
   if (removed > 0)
@@ -158,7 +158,7 @@ void SolidFix::prepare(const Simulation& sim) {
   built_ = true;
   const double start = omp_get_wtime();
   const double h = sim.kernel_radius();
-  spacing_ = lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+  spacing_ = lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
   const double cell = cell_size();
   const double reach = SolidMap::required_reach(h, cell, wall_.delta());
   const std::unique_ptr<Shape> shape = shape_.make_shape(dom, cell, reach);
