@@ -274,3 +274,34 @@ TEST(ViscousWall, SameBitsAtOneAndTwoThreads) {
     EXPECT_TRUE(a[0] == a[1]) << (solid ? "moving plate" : "box");
   }
 }
+
+// Without a Laplacian viscosity a no-slip box holds the fluid by its touching particles (the
+// first layer, at the contact distance): they lose their velocity along the wall after the
+// velocity update; with one, the wall term holds it, and they keep theirs but for its pull.
+TEST(ViscousWall, ANoSlipBoxStopsTouchingParticlesOnlyWithoutALaplacianViscosity) {
+  const double U = 0.1;
+  for (const bool viscous : {false, true}) {
+    Simulation sim;
+    const double side = kNx * kS / 2 + 3 * kH;
+    sim.set_domain(Domain{{-side, -side, 0}, {side, side, 1}});
+    sim.set_kernel_radius(kH);
+    sim.set_timestep(1e-4);
+    const double lo[3] = {-kNx * kS / 2, -kNx * kS / 2, 0}, hi[3] = {kNx * kS / 2, kNx * kS / 2, kTop}, v[3] = {U, 0, 0};
+    add_lattice(sim, lo, hi, kS, v);
+    const auto& styles = StyleRegistry::builtin();
+    sim.add_fix(styles.make_fix("integrator", "leapfrog", {}));
+    if (viscous)
+      sim.add_fix(styles.make_fix("viscosity", "sph_viscosity", {{"kind", std::string("laplacian")}, {"nu", kNu}}));
+    sim.add_fix(styles.make_fix("walls", "box", box(true)));
+    sim.run(1);
+    const auto& P = sim.particles();
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      if (!mid_slab(P.x()[i], P.y()[i]) || layer(P.z()[i]) > 2) continue;
+      // With the term, the first layer loses dt nu (1 + rho0/rho) Psi U, well below U / 10.
+      if (layer(P.z()[i]) == 1 && !viscous)
+        EXPECT_EQ(P.vx()[i], 0) << "a touching particle";
+      else
+        EXPECT_GT(P.vx()[i], 0.9 * U) << (viscous ? "the wall term holds the layer, " : "") << "layer " << layer(P.z()[i]);
+    }
+  }
+}

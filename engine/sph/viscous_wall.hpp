@@ -24,8 +24,10 @@
 // A linear shear above the wall is then continued exactly, and its SPH Laplacian is zero at
 // the wall layers as in the bulk; a parabola's curvature is not continued, so the first layer
 // sees 1 - eps of its Laplacian, eps(d) = integral_wall (-g) r^2/(r^2+eta^2) s_n (s_n - d) dV
-// over the full second moment (0.17 at d = s/2, h = 2s; 0.03 a spacing further), a force at
-// the wall that changes a Poiseuille profile by ~eps s^2 / H^2 only (docs/physics.md).
+// over the full second moment (0.25 on the lattice at d = s/2, h = 2s), a force at the wall
+// that moves a Poiseuille centre line by 4 eps z' s / H^2 only (docs/physics.md). The
+// continuum also reaches the second layer (d = 3s/2) within h - delta_v, where no lattice
+// site behind the wall does: a sliver, 1.3% of the first layer's share.
 // delta_v is chosen, as the density's delta, so that a particle of the initial lattice's
 // first layer (d = s/2) gets exactly what the lattice sites behind the wall would give a
 // linear shear (0.013 s at h = 2s). A particle closer than h/8 (only with a contact
