@@ -95,13 +95,14 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
              {"rho", "probe", {{"points", points}, {"field", std::string("density")}}},
              {"h", "gauge", {{"points", points}}}}};
   }
-  // The velocity sums (the Laplacian viscosity and XSPH), and a damping zone at the box's far end.
+  // The velocity sums (the Laplacian viscosity, with the no-slip walls' term, and XSPH), and a
+  // damping zone at the box's far end.
   if (name == "WcsphLaplacianViscosityXsph") {
     auto fixes = wcsph("summation");
     fixes[3].params = {{"kind", std::string("laplacian")}, {"nu", 1e-3}};
     fixes.push_back({"xsph", "xsph", {}});
     fixes.push_back({"zone", "damping", {{"from", Vec3{0.09, 0, 0}}, {"to", Vec3{0.2, 0, 0}}, {"rate", 50.0}}});
-    fixes.push_back(kWalls);
+    fixes.push_back({"walls", "box", {{"no_slip", true}}});
     return {0.0002, fixes, {}};
   }
   // Sinks on the block's way, each with the flow compute: PBF's from step 5 on, WCSPH's from

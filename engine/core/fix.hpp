@@ -50,7 +50,9 @@ class Fix {
   // speed, m/s; 0: none): time-step control keeps dt below h over it.
   virtual double signal_speed() const { return 0; }
   // The kinematic viscosity (m^2/s) the fix applies explicitly, for the viscous limit of
-  // time-step control (0: none).
+  // time-step control (0: none). A fix that reports one applies the no-slip walls' viscous
+  // pull (DensityBoundary::add_no_slip), so those walls leave the touching particles'
+  // velocity to it.
   virtual double kinematic_viscosity() const { return 0; }
   // How this fix moves particles through time, if it does (at most one fix per pipeline).
   virtual Integration integration() const { return Integration::none; }

@@ -296,6 +296,7 @@ NON_NUMERIC = [
     # style, parameter, type, specific values [(label, lua, outcome)]
     ("pbf", "one_sided", "bool", [("false", "false", "A")]),
     ("box", "wall_density", "bool", [("false", "false", "A")]),
+    ("box", "no_slip", "bool", [("true", "true", "A")]),
     ("wcsph", "eos", "string", [("empty", '""', "R"), ("capital", '"Tait"', "R"), ("linear", '"linear"', "A")]),
     ("wcsph", "density", "string", [("empty", '""', "R"), ("continuity", '"continuity"', "A")]),
     ("wcsph", "negative_pressure", "bool", [("true", "true", "A")]),
