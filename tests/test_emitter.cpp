@@ -15,6 +15,7 @@
 #include "engine/core/simulation.hpp"
 #include "engine/io/restart.hpp"
 #include "engine/registry/style_registry.hpp"
+#include "engine/sph/lattice.hpp"
 #include "pipelines.hpp"
 #include "test_util.hpp"
 
@@ -84,3 +85,35 @@ INSTANTIATE_TEST_SUITE_P(BothSolvers, EmitterRate,
                          [](const auto& info) {
                            return std::string(std::get<0>(info.param)) + "_" + std::get<1>(info.param);
                          });
+
+// An opening that fluid covers waits for room, says so once, and emits as soon as the fluid
+// has gone (here: removed between runs), without overlapping it meanwhile.
+TEST(Emitter, WaitsForRoomWhereFluidCoversTheOpeningAndSaysSoOnce) {
+  Simulation sim;
+  sim.set_domain(Domain{{0, 0, 0}, {0.2, 0.2, 0.2}});
+  sim.set_kernel_radius(0.02);
+  sim.set_timestep(0.001);
+  const double lo[3] = {0.05, 0.05, 0.05}, hi[3] = {0.15, 0.15, 0.1}, rest[3] = {0, 0, 0};
+  add_lattice(sim, lo, hi, 0.01, rest);  // a block at rest, no gravity, over the opening
+  const auto& styles = StyleRegistry::builtin();
+  sim.add_fix(styles.make_fix("pbf", "pbf", {}));
+  sim.add_fix(styles.make_fix("walls", "box", {}));
+  sim.add_fix(styles.make_fix("jet", "emitter",
+                              {{"center", Vec3{0.1, 0.1, 0.075}}, {"normal", Vec3{0, 0, 1}}, {"size", Vec2{0.04, 0.04}},
+                               {"speed", 0.5}}));
+  sim.add_compute(styles.make_compute("in", "flow", {{"fix", std::string("jet")}}));
+  LogCapture log;
+  sim.run(20);
+  std::vector<double> v;
+  sim.find_compute("in")->evaluate(sim, v);
+  EXPECT_EQ(v[0], 0.0);
+  EXPECT_EQ(sim.particles().size(), 500u);
+  EXPECT_EQ(log.count("emitter 'jet': fluid stands in front of the opening"), 1) << log.text();
+  // The block gone, the layer held back enters at once (it waited at the opening's plane).
+  std::vector<char> all(sim.particles().size(), 1);
+  sim.particles().remove(all);
+  sim.run(1);
+  sim.find_compute("in")->evaluate(sim, v);
+  EXPECT_EQ(v[0], 16.0);  // a layer of 4 x 4
+  EXPECT_EQ(log.count("emitter 'jet': fluid stands in front of the opening"), 1);
+}

@@ -93,7 +93,7 @@ TEST(Outflow, TheSameBitsAtOneAndTwoThreads) {
     }
     omp_set_num_threads(1);
     SCOPED_TRACE(name);
-    EXPECT_LT(one.particles().size(), 800u);
+    EXPECT_TRUE(one.particles().size() < 800u || one.particles().next_id() > 800) << "no particle came or went";
     expect_same_fields(one.particles(), two.particles());
   }
 }

@@ -103,7 +103,8 @@ void RunLoop::prepare() {
 // their fields from the fixes that declared them; then every particle counts as started.
 void RunLoop::init_new_particles() {
   auto& P = sim_.particles_;
-  std::vector<std::uint32_t> fresh;
+  std::vector<std::uint32_t>& fresh = fresh_;  // kept: an emitter's steps allocate nothing
+  fresh.clear();
   for (std::size_t i = 0; i < P.size(); ++i)
     if (P.ids()[i] >= P.first_new_id()) fresh.push_back(static_cast<std::uint32_t>(i));
   const auto found = static_cast<std::int64_t>(fresh.size());

@@ -56,6 +56,7 @@ class RunLoop {
   double neighbor_mean_sum_ = 0;
   long long neighbor_builds_ = 0;
   double full_neighborhood_ = 0;  // particles within h of one at rest density
+  std::vector<std::uint32_t> fresh_;  // the new particles' indices (init_new_particles)
 };
 
 }  // namespace pbf

@@ -90,12 +90,13 @@ class Emitter : public Fix {
   bool runs_distributed() const override { return true; }  // each rank creates its share of a layer
   const ParticleFlow* particle_flow() const override { return &emitted_; }
   double created_mass(const Simulation& sim) const override {
-    const double s = spacing(sim);
-    return lattice_mass(s, sim.kernels(), sim.rest_density());
+    const double s = known_spacing(sim);
+    return s > 0 ? lattice_mass(s, sim.kernels(), sim.rest_density()) : 0;
   }
 
   void init(Simulation& sim) override {
     const double s = spacing(sim);
+    used_spacing_ = s;
     check_kernel_radius(sim.kernel_radius(), s, fmt::format("fix '{}' (emitter)", id()));
     mass_ = real(lattice_mass(s, sim.kernels(), sim.rest_density()));
     const Domain& d = sim.domain();
@@ -117,7 +118,7 @@ class Emitter : public Fix {
   }
 
   void exchange(Simulation& sim) override {
-    const double t = sim.time(), dt = sim.timestep(), s = spacing(sim), L = layer_distance_;
+    const double t = sim.time(), dt = sim.timestep(), s = used_spacing_, L = layer_distance_;
     if (!checked_) check_scene(sim);
     checked_ = true;
     if (t + 0.5 * dt < start_ || t + 0.5 * dt >= stop_) return;  // the steps whose middle is within [start, stop)
@@ -155,14 +156,20 @@ class Emitter : public Fix {
   }
 
  private:
-  double spacing(const Simulation& sim) const {
+  // The spacing given, else the scene's (from its particles' mass, or as this emitter last
+  // found it); 0 when there is none of these.
+  double known_spacing(const Simulation& sim) const {
     if (spacing_ > 0) return spacing_;
-    const double mass = sim.global_count() > 0 ? sim.particles().mean_mass() : 0;
-    if (mass == 0)
+    if (sim.global_count() > 0) return lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+    return used_spacing_;
+  }
+  double spacing(const Simulation& sim) const {
+    const double s = known_spacing(sim);
+    if (s == 0)
       throw Error(fmt::format("fix '{}' (emitter): parameter 'spacing' is needed: the scene has no particles to take "
                               "it from",
                               id()));
-    return lattice_spacing(mass, sim.kernels(), sim.rest_density());
+    return s;
   }
 
   // The opening's sites, as offsets (along u, along v) from the centre.
@@ -207,7 +214,7 @@ class Emitter : public Fix {
     if (open.empty())
       throw Error(fmt::format("fix '{}' (emitter): the opening lies inside a solid: no fluid can enter", id()));
     sites_ = open;
-    const double s = spacing(sim);
+    const double s = used_spacing_;
     const Vec3 ahead = at({0, 0}, 0.5 * s);
     const real q[3] = {real(ahead[0]), real(ahead[1]), real(ahead[2])};
     for (const auto& f : sim.fixes())
@@ -257,6 +264,7 @@ class Emitter : public Fix {
   Vec2 size_{0, 0};
   double radius_ = 0, speed_ = 0, start_, stop_, spacing_;
   double layer_distance_ = 0;  // L: a layer enters each time the fluid advances this far
+  double used_spacing_ = 0;    // the spacing of the last run
   real mass_ = 0;
   std::vector<std::array<double, 2>> sites_;
   // State: the distance advanced since the last layer, and what has entered.
