@@ -1,5 +1,5 @@
 -- fountain.lua: a fountain playing into a basin with a drain. A jet leaves a nozzle (an
--- emitter: a disc 3 cm across, 1.6 cm above the pool) at 2.2 m/s, leaning 30 degrees from
+-- emitter: a disc 3 cm across, 1.6 cm above the pool) at 2 m/s, leaning 30 degrees from
 -- the vertical, arcs over and falls into the pool; a drain in the far corner of the basin's
 -- floor (an outflow region) takes the water away. The drain takes more the deeper the water
 -- stands over it, so the pool settles where it takes what the jet brings: after a second or
@@ -9,7 +9,7 @@
 --   pbfengine run scenarios/fountain.lua [-v t_end=3] [-v out=out] [-v solver=pbf|wcsph]
 --
 -- Variables: t_end (simulated seconds, default 3), s (particle spacing, default 0.01 m),
--- speed (the jet's, default 2.2 m/s), drain (the drain's side, default 0.025 m), out (frame
+-- speed (the jet's, default 2 m/s), drain (the drain's side, default 0.025 m), out (frame
 -- directory, default "out"; "" for none), interval (seconds between frames, default 0.02),
 -- solver ("pbf", default, or "wcsph"; share/lua/solvers.lua). Pictures, a movie and ParaView
 -- frames with -v images=T, -v movie=PATH, -v vtk=T (share/lua/outputs.lua); restarts every
@@ -20,7 +20,7 @@ assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got "
 local t_end = var.t_end or 3
 local out = var.out or "out"
 local s = var.s or 0.01
-local speed = var.speed or 2.2
+local speed = var.speed or 2.0
 local drain = var.drain or 0.025
 local L, W, H, depth = 0.5, 0.3, 0.5, 0.06   -- the basin, and the pool's starting depth
 local g = 9.81
@@ -43,7 +43,7 @@ else
   pbf.fix("xsph", "xsph", {c = 0.01})
 end
 pbf.fix("walls", "box", {})
-pbf.fix("nozzle", "emitter", {shape = "disc", center = {0.12, W / 2, depth + 0.016}, radius = 0.015,
+pbf.fix("nozzle", "emitter", {shape = "disc", center = {0.08, W / 2, depth + 0.016}, radius = 0.015,
                               normal = {math.sin(lean), 0, math.cos(lean)}, speed = speed, spacing = s})
 pbf.fix("drain", "outflow", {region = "box", lo = {L - drain, W / 2 - drain / 2, 0},
                              hi = {L, W / 2 + drain / 2, 2 * s}})

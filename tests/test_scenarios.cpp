@@ -204,6 +204,33 @@ TEST(WaveFlume, PaddleAndGaugesSameBitsAtOneAndTwoThreads) {
   }
 }
 
+// The fountain (an emitter and a drain) with either solver: its frames and thermo are the same
+// bytes at 1 and 2 threads, the count is the pool's plus what came in less what went out,
+// and the jet has reached the drain (some left) within 0.6 s.
+TEST(Fountain, ComesAndGoesSameBitsAtOneAndTwoThreads) {
+  for (const std::string solver : {"pbf", "wcsph"}) {
+    const auto dir = pbf::test::temp_dir("fountain-" + solver);
+    for (int t : {1, 2}) {
+      auto r = run_engine("run " + scenario("fountain.lua") + " -v solver=" + solver + " -v s=0.02 -v t_end=0.6" +
+                          " -v interval=0.2 -v restart_interval=0 --threads " + std::to_string(t) + " -v out=" +
+                          (dir / std::to_string(t)).string());
+      ASSERT_EQ(r.code, 0) << r.output;
+    }
+    int compared = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir / "1")) {
+      EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(dir / "2" / e.path().filename()))
+          << solver << " " << e.path().filename();
+      ++compared;
+    }
+    EXPECT_GE(compared, 5) << solver;  // four frames and the thermo CSV
+    const auto thermo = pbf::test::read_csv(dir / "1" / "thermo.csv");
+    const auto& n = thermo.at("n");
+    const double in = thermo.at("in.count").back(), out = thermo.at("out.count").back();
+    EXPECT_GT(out, 0) << solver;
+    EXPECT_EQ(n.back(), n.front() + in - out) << solver;
+  }
+}
+
 // A yes/no variable (share/lua/flag.lua) takes true/false or 1/0; anything else stops the
 // scenario with a message naming the variable, before the run.
 TEST(ScenarioVariables, AYesNoVariableRefusesAnythingElseByName) {
