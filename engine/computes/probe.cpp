@@ -54,9 +54,11 @@ class Probe : public PointCompute {
     check_inside(sim.domain());  // a domain changed since the last check
     const auto& P = sim.particles();
     // The density first: its sums may rebuild the ghosts, which moves every array; the point
-    // cells then find them current. Pointers into the particles only after both.
-    const real* density = field_ == "density" ? sim.solver_density() : nullptr;
+    // cells then find them current. Pointers into the particles only after both (a density
+    // field's too: the point cells may rebuild the ghosts, periodic images included).
+    if (field_ == "density") sim.solver_density();
     const NeighborGrid& cells = sim.point_cells();
+    const real* density = field_ == "density" ? sim.solver_density() : nullptr;  // current: no rebuild
     const real* a[3] = {nullptr, nullptr, nullptr};
     int components = 1;
     if (field_ == "velocity") {

@@ -22,11 +22,25 @@ namespace pbf {
 Simulation::Simulation() = default;
 Simulation::~Simulation() = default;
 
+namespace {
+// A period shorter than 2 h would put a particle within h of two images of another (or of
+// its own), and the grid's cells in one period would be fewer than two.
+void check_periodic_lengths(const Domain& domain, double h) {
+  for (int a = 0; a < 3; ++a)
+    if (domain.periodic[a] && domain.extent(a) < 2 * h)
+      throw Error(fmt::format("domain: the periodic axis {} is {:.6g} m long, shorter than two kernel radii (2 h = "
+                              "{:.6g} m): a particle would meet its own image; lengthen the domain along {}, or make "
+                              "{} not periodic",
+                              "xyz"[a], domain.extent(a), 2 * h, "xyz"[a], "xyz"[a]));
+}
+}  // namespace
+
 void Simulation::set_domain(const Domain& domain) {
   for (int a = 0; a < 3; ++a)
     if (!(domain.hi[a] > domain.lo[a]) || !std::isfinite(domain.hi[a] - domain.lo[a]))
       throw Error(fmt::format("domain: hi must exceed lo along every axis (axis {}: lo {}, hi {})", "xyz"[a],
                               domain.lo[a], domain.hi[a]));
+  if (h_ > 0) check_periodic_lengths(domain, h_);
   domain_ = domain;
   domain_set_ = true;
   positions_changed();
@@ -45,6 +59,7 @@ void Simulation::set_kernel_radius(double h) {
   // Particles made for another h (pbf.kernel_radius after pbf.lattice): checked against it now.
   const auto& P = particles_;
   if (P.size() > 1) check_kernel_radius(h, sampled_spacing(P.x(), P.y(), P.z(), P.size()), "pbf.kernel_radius");
+  check_periodic_lengths(domain_, h);
   h_ = h;
   kernels_ = kernels;
   positions_changed();
@@ -66,6 +81,7 @@ void Simulation::set_rest_density(double rho0) {
 }
 
 void Simulation::check_scale() const {
+  check_periodic_lengths(domain_, h_);
   constexpr double kMostRadii = 1e6;
   for (int a = 0; a < 3; ++a) {
     const double reach = std::max(std::fabs(domain_.lo[a]), std::fabs(domain_.hi[a]));
@@ -251,11 +267,11 @@ Simulation::ListTimes Simulation::bin_and_list() {
   lap(times.ghosts);
   // Each list in cell order, then id: memory order plays no part. The copies of
   // check_ghosts() are not binned: the lists name them in place of the particles.
-  const bool copies = check_ghosts_ && !P.distributed();
-  grid_.bin(P.x(), P.y(), P.z(), copies ? P.size() : P.size_with_ghosts(), geometry_, ghost_range_, P.ids());
+  grid_.bin(P.x(), P.y(), P.z(), copies_first(), geometry_, ghost_range_, P.ids());
   lap(times.binning);
   grid_.build_lists(P.x(), P.y(), P.z(), h_, P.size());
-  if (copies) grid_.offset_neighbors(static_cast<std::uint32_t>(P.size()));
+  if (copies() > 0)
+    grid_.offset_neighbors(static_cast<std::uint32_t>(P.size()), static_cast<std::uint32_t>(copies_first()));
   lap(times.lists);
   grid_version_ = positions_version_;
   lists_valid_ = true;
@@ -266,13 +282,24 @@ void Simulation::rebuild_ghosts() {
   auto& P = particles_;
   ghost_range_ = CellRange::all(geometry_);
   if (P.distributed()) {
-    ghost_range_ = decomposition_.build_ghosts(P, geometry_);
+    ghost_range_ = decomposition_.build_ghosts(P, geometry_, domain_);
+    images_.build(P, domain_, geometry_, ghost_range_);
+  } else if (has_ghosts()) {
+    P.drop_ghosts();
+    if (domain_.any_periodic()) {  // the cells of the domain and of the particles, grown by one
+      CellRange cells = cells_holding(P, geometry_);
+      for (int a = 0; a < 3; ++a) {
+        cells.lo[a] = std::min(cells.lo[a], 0L);
+        cells.hi[a] = std::max(cells.hi[a], geometry_.dims[a]);
+      }
+      ghost_range_ = geometry_.grown(cells);
+      images_.build(P, domain_, geometry_, ghost_range_);
+    }
+    if (check_ghosts_) copy_particles_as_ghosts();
+  }
+  if (has_ghosts()) {
     ghost_positions_version_ = positions_version_;
     lists_valid_ = false;  // the lists' ghost indices name other particles now
-  } else if (check_ghosts_) {
-    copy_particles_as_ghosts();
-    ghost_positions_version_ = positions_version_;
-    lists_valid_ = false;
   }
   ghosts_version_ = positions_version_;
   point_grid_version_ = 0;
@@ -280,20 +307,30 @@ void Simulation::rebuild_ghosts() {
   density_version_ = volume_version_ = 0;
 }
 
-// Particle i's ghost is particle n + i, with every field's value: what a distributed run's
-// ghost build carries. The scratch arrays' contents are undefined now (a distributed run's
-// ghosts are other particles than before), so they become NaN.
+// Particle i's ghost is particle copies_first() + i, with every field's value: what a
+// distributed run's ghost build carries. The scratch arrays' contents are undefined now (a
+// distributed run's ghosts are other particles than before), so they become NaN.
 void Simulation::copy_particles_as_ghosts() {
   auto& P = particles_;
-  P.drop_ghosts();
   const std::size_t n = P.size();
-  P.add_ghosts(std::span<const std::int64_t>(P.ids(), n));
+  const std::size_t first = P.add_ghosts(std::span<const std::int64_t>(P.ids(), n));
   for (FieldId f : P.fields())
     for (int c = 0; c < P.spec(f).components; ++c) {
       real* values = P.data(f, c);
-      std::copy(values, values + n, values + n);
+      std::copy(values, values + n, values + first);
     }
   poison_scratch();
+}
+
+void Simulation::wrap_periodic() {
+  if (!domain_.any_periodic()) return;
+  auto& P = particles_;
+  real* const x[3] = {P.x(), P.y(), P.z()};
+  for_particles(P.size(), [&](std::size_t i) {
+    for (int a = 0; a < 3; ++a)
+      if (domain_.periodic[a]) x[a][i] = domain_.wrapped(a, x[a][i]);
+  });
+  positions_changed();
 }
 
 void Simulation::poison_scratch() {
@@ -308,13 +345,15 @@ const NeighborGrid& Simulation::point_cells() {
   auto& P = particles_;
   place_particles();
   if (!P.distributed()) {
-    geometry_ = GridGeometry::of(domain_, h_, P.size());
-    ghost_range_ = CellRange::all(geometry_);
-  } else if (ghosts_version_ != positions_version_) {
-    rebuild_ghosts();
+    const GridGeometry cells = GridGeometry::of(domain_, h_, P.size());
+    if (!(cells == geometry_)) ghosts_version_ = 0;
+    geometry_ = cells;
+    if (!domain_.any_periodic()) ghost_range_ = CellRange::all(geometry_);
   }
-  // The particles and, in a distributed run, the ghosts (those of check_ghosts() are copies).
-  const std::size_t binned = P.distributed() ? P.size_with_ghosts() : P.size();
+  if ((P.distributed() || domain_.any_periodic()) && (ghosts_version_ != positions_version_ || !images_.current(P)))
+    rebuild_ghosts();  // (images_ is empty, hence current, without periodic axes)
+  // The particles, the other ranks' ghosts and the images (not the copies of check_ghosts()).
+  const std::size_t binned = copies_first();
   if (point_grid_version_ != positions_version_ || point_grid_.binned_count() != binned) {
     point_grid_.bin(P.x(), P.y(), P.z(), binned, geometry_, ghost_range_, P.ids());
     point_grid_version_ = positions_version_;
@@ -329,17 +368,21 @@ bool Simulation::measures_at(double x, double y, double z) const {
 }
 
 void Simulation::update_ghosts(std::initializer_list<real*> arrays) {
-  if (particles_.distributed()) {
-    decomposition_.update(std::span<real* const>(arrays.begin(), arrays.size()));
-  } else if (check_ghosts_ && particles_.ghosts() > 0) {  // each copy from its particle
-    const std::size_t n = particles_.size();
-    for (real* values : arrays) std::copy(values, values + n, values + n);
-  }
+  const std::span<real* const> all(arrays.begin(), arrays.size());
+  if (particles_.distributed()) decomposition_.update(all);
+  if (images_.current(particles_)) images_.update(all);
+  if (const std::size_t n = copies(); n > 0)  // each copy from its particle
+    for (real* values : arrays) std::copy(values, values + n, values + copies_first());
 }
 
 void Simulation::update_ghost_positions() {
   if (!has_ghosts() || ghost_positions_version_ == positions_version_) return;
-  update_ghosts({particles_.x(), particles_.y(), particles_.z()});
+  auto& P = particles_;
+  real* const x[3] = {P.x(), P.y(), P.z()};
+  if (P.distributed()) decomposition_.update(std::span<real* const>(x, 3), true);
+  if (images_.current(P)) images_.update_positions(domain_, x);
+  if (const std::size_t n = copies(); n > 0)
+    for (real* values : x) std::copy(values, values + n, values + copies_first());
   ghost_positions_version_ = positions_version_;
 }
 
@@ -367,14 +410,16 @@ void Simulation::refresh_density(bool with_volume) {
   const bool volume_current = volume_version_ == density_version_ && volume_.size() == density_.size();
   if (density_current && (volume_current || !with_volume)) return;
   const std::size_t n = particles_.size();
-  const real* m = particles_.mass();
   if (density_current) {  // the volume only
+    const real* m = particles_.mass();
     volume_.resize(density_.size());
     for_particles(density_.size(), [&](std::size_t i) { volume_[i] = m[i] / density_[i]; });
     volume_version_ = density_version_;
     return;
   }
+  // (may rebuild the ghosts, which moves every array: pointers after it)
   if (grid_.particle_count() != particles_.size() || !lists_valid_) refresh_neighbors();
+  const real* m = particles_.mass();
   density_.resize(particles_.size_with_ghosts());
   if (with_volume) volume_.resize(density_.size());
   update_ghost_positions();

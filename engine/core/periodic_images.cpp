@@ -1,0 +1,66 @@
+#include "engine/core/periodic_images.hpp"
+
+#include "engine/core/parallel.hpp"
+
+namespace pbf {
+
+std::vector<Shift> image_shifts(const Domain& domain) {
+  std::vector<Shift> shifts;
+  if (!domain.any_periodic()) return shifts;
+  for (int sz = -1; sz <= 1; ++sz)
+    for (int sy = -1; sy <= 1; ++sy)
+      for (int sx = -1; sx <= 1; ++sx) {
+        const Shift s{std::int8_t(sx), std::int8_t(sy), std::int8_t(sz)};
+        bool valid = s != Shift{0, 0, 0};
+        for (int a = 0; a < 3; ++a) valid = valid && (domain.periodic[a] || s[a] == 0);
+        if (valid) shifts.push_back(s);
+      }
+  return shifts;
+}
+
+bool image_in(const Domain& domain, const GridGeometry& grid, const CellRange& range, const real* const x[3],
+              std::size_t i, const Shift& shift) {
+  long cell[3];
+  for (int a = 0; a < 3; ++a) cell[a] = grid.cell_along(a, domain.image(a, x[a][i], shift[a]));
+  return range.contains(cell);
+}
+
+void PeriodicImages::build(Particles& P, const Domain& domain, const GridGeometry& grid, const CellRange& range) {
+  clear();
+  shifts_ = image_shifts(domain);
+  if (shifts_.empty()) return;
+  const std::size_t n = P.size();
+  const real* const x[3] = {P.x(), P.y(), P.z()};
+  std::vector<std::int64_t> ids;
+  for (std::size_t i = 0; i < n; ++i)
+    for (const Shift& s : shifts_)
+      if (image_in(domain, grid, range, x, i, s)) {
+        owner_.push_back(static_cast<std::uint32_t>(i));
+        shift_.push_back(s);
+        ids.push_back(P.ids()[i]);
+      }
+  first_ = P.add_ghosts(ids);
+  for (FieldId f : P.fields()) {
+    std::vector<real*> components;
+    for (int c = 0; c < P.spec(f).components; ++c) components.push_back(P.data(f, c));
+    update(components);
+  }
+  real* const positions[3] = {P.x(), P.y(), P.z()};
+  update_positions(domain, positions);
+}
+
+void PeriodicImages::update(std::span<real* const> arrays) const {
+  if (owner_.empty()) return;
+  for_particles(owner_.size(), [&](std::size_t k) {
+    for (real* values : arrays) values[first_ + k] = values[owner_[k]];
+  });
+}
+
+void PeriodicImages::update_positions(const Domain& domain, real* const x[3]) const {
+  if (owner_.empty()) return;
+  for_particles(owner_.size(), [&](std::size_t k) {
+    for (int a = 0; a < 3; ++a) x[a][first_ + k] = domain.image(a, x[a][owner_[k]], shift_[k][a]);
+  });
+}
+
+}  // namespace pbf
