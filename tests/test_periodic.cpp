@@ -46,7 +46,8 @@ Domain box(double lx, double ly, double lz, std::initializer_list<int> periodic)
 // A lattice of spacing s filling a box periodic along all three axes (6 x 7 x 5 spacings:
 // the period along z holds two cells of 2.5 s, the fewest allowed) is the infinite lattice:
 // every particle has the bulk lattice's neighbours (images included) and, with the lattice
-// mass rule, the rest density. Rounding: pair_sum_rounding over the positions' reach, images included (two periods).
+// mass rule, the rest density; so does a density probe beside a face. Rounding:
+// pair_sum_rounding over the positions' reach, images included (two periods).
 TEST(Periodic, ALatticeFillingAPeriodicBoxHasTheBulkDensityEverywhere) {
   const double s = 0.01, L[3] = {6 * s, 7 * s, 5 * s};
   Simulation sim;
@@ -65,6 +66,15 @@ TEST(Periodic, ALatticeFillingAPeriodicBoxHasTheBulkDensityEverywhere) {
     EXPECT_LE(sim.neighbors().count(i), bulk_count + 6) << "particle " << sim.particles().ids()[i];
     EXPECT_NEAR(rho[i], sim.rest_density(), tolerance) << "particle " << sim.particles().ids()[i];
   }
+  // A probe beside a face sees the particles across it: it reads what a probe a spacing
+  // further in reads (the lattice is the same there), and a gauge at a face the layer's depth.
+  const Points points = {{1e-4, 3.3 * s, 2.1 * s}, {s + 1e-4, 3.3 * s, 2.1 * s}};
+  sim.add_compute(StyleRegistry::builtin().make_compute(
+      "rho", "probe", {{"points", points}, {"field", std::string("density")}}));
+  std::vector<double> probed;
+  sim.find_compute("rho")->evaluate(sim, probed);
+  EXPECT_NEAR(probed[0], probed[1], tolerance);
+  EXPECT_NEAR(probed[0], sim.rest_density(), 0.01 * sim.rest_density());  // Shepard over the lattice: 1%
 }
 
 // A cloud of 8 x 6 x 6 particles on a lattice of spacing s jittered by up to s/5 (so no pair

@@ -17,6 +17,8 @@
 // below 1/2 on the whole line (dry). A lone droplet has f = V W(0) ~ 0.2 at h = 2s, so spray
 // above the surface does not count; a thick enough sheet does.
 //
+// Near a periodic face the sums reach the particles across it (their periodic images, which the
+// point cells hold), so a gauge there reads as one in the middle.
 // Each sum runs serially in PointQuery's fixed order: the same bits at any thread count, and on
 // any number of ranks (each sample is measured by the rank whose box holds it).
 #include <algorithm>
@@ -127,7 +129,8 @@ class Gauge : public PointCompute {
 void register_compute_gauge(StyleRegistry& r) {
   r.add({"gauge",
          StyleKind::compute,
-         "water depth (m) along vertical lines: the highest z where the fluid fraction reaches 1/2, above each foot",
+         "water depth (m) along vertical lines: the highest z where the fluid fraction reaches 1/2, above each foot "
+         "(near a periodic face it sees the fluid across it)",
          {{"points", ParamType::PointList, std::nullopt, "m",
            "the foot {x, y, z} of each gauge line, which runs up to the domain top"},
           ParamSpec{"labels", ParamType::StringList, std::nullopt, "",

@@ -14,7 +14,8 @@
 // A is the solver's "pressure" field (gauge pressure, 0 at a free surface: wcsph's equation
 // of state, pbf's from its multipliers, docs/physics.md "Pressure in PBF"), the velocity, or
 // the density the solver uses (Simulation::solver_density). Each point's sum runs serially in
-// the fixed order of PointQuery, so the values have the same bits at any thread count.
+// the fixed order of PointQuery, so the values have the same bits at any thread count. Near a
+// periodic face the sum reaches the particles across it (their images, in the point cells).
 #include <fmt/format.h>
 
 #include "engine/computes/point_compute.hpp"
@@ -113,7 +114,8 @@ bool computes_read_pressure(const Simulation& sim) {
 void register_compute_probe(StyleRegistry& r) {
   r.add({"probe",
          StyleKind::compute,
-         "pressure (Pa), velocity (m/s) or density (kg/m^3) at points, kernel-interpolated (Shepard)",
+         "pressure (Pa), velocity (m/s) or density (kg/m^3) at points, kernel-interpolated (Shepard; near a "
+         "periodic face over the particles across it too)",
          {{"points", ParamType::PointList, std::nullopt, "m", "the probe points {{x, y, z}, ...} (inside the domain)"},
           ParamSpec{"field", ParamType::String, std::string("pressure"), "",
                     "what to sample: pressure (gauge, the solver's), velocity, density (the solver's)"}

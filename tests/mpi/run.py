@@ -13,6 +13,10 @@ Cases:
   identical_solid  scenarios/spheric_dambreak.lua at 5 cm (PBF, the box obstacle across the
               ranks' boundaries, its load in thermo, pressure probes and gauges): probes.csv and
               thermo.csv.
+  identical_periodic  tests/mpi/periodic.lua, a dam break in a tank periodic along x and y
+              (the column spreads through the faces and meets itself), on 1 process and 2, 3 and
+              4 ranks: every text frame, probes.csv (probes and gauges beside the periodic faces)
+              and thermo.csv have the same bytes (images cross the faces as ghosts).
   sources     tests/mpi/sources.lua: particle files (.csv, and a .vtu frame), lattices (two on the same sites, one in a
               sphere), solids that leave particles out before the first run and after it, a
               lattice added between runs: every rank creates a share of each (about 1/ranks of
@@ -146,6 +150,17 @@ def identical(args, work):
     print(f"{len(frames)} frames, probes.csv, thermo.csv and the VTK frames' rows identical at 1, 2, 3 and 4 ranks; "
           f"front at x = "
           f"{farthest:.3f} m")
+
+
+def identical_periodic(args, work):
+    out, frames = same_outputs(args, work, os.path.join(HERE, "periodic.lua"), {}, ["thermo.csv", "probes.csv"],
+                               rank_counts=(1, 2, 3, 4))
+    # The fluid went through the faces: particles on both sides of x = 0 (the column starts in 0.2 < x < 0.5).
+    with open(os.path.join(out, frames[-1])) as f:
+        xs = [float(line.split()[1]) for line in f if line[0].isdigit() and " " in line]
+    if not (min(xs) < 0.05 and max(xs) > 0.75):
+        fail(f"the fluid spans x = {min(xs)} .. {max(xs)}: it did not reach the periodic faces")
+    print(f"periodic x and y: {len(frames)} frames, probes.csv and thermo.csv identical at 1, 2, 3 and 4 ranks")
 
 
 def identical_wcsph(args, work):
@@ -415,7 +430,7 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
+                        choices=["identical", "identical_periodic", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
                                  "script_error",
                                  "rank_error", "per_particle", "signals"])
     args = parser.parse_args()
