@@ -45,10 +45,10 @@ class Extent : public Compute {
 }  // namespace
 
 void register_compute_extent(StyleRegistry& r) {
-  r.add({"extent", StyleKind::compute, "bounding box of the fluid: xmin, xmax, ymin, ymax, zmin, zmax (m); along a periodic axis "
-         "the coordinates as they are (a particle that crossed a face in the last step lies beyond it until the next)", {},
+  r.add({"extent", StyleKind::compute, "bounding box of the fluid: xmin, xmax, ymin, ymax, zmin, zmax (m)", {},
          nullptr, make_compute<Extent>(),
-         "`xmin`, `xmax`, `ymin`, `ymax`, `zmin`, `zmax` (m)"});
+         "`xmin`, `xmax`, `ymin`, `ymax`, `zmin`, `zmax` (m); along a periodic axis the coordinates as they are (a "
+         "particle that crossed a face in the last step lies up to a step's travel beyond it until the next wraps it)"});
 }
 
 }  // namespace pbf

@@ -39,12 +39,12 @@ class Front : public Compute {
 void register_compute_front(StyleRegistry& r) {
   r.add({"front",
          StyleKind::compute,
-         "a high percentile of one coordinate (m), e.g. a dam-break surge front; along a periodic axis of the "
-         "coordinates as they are (within the domain: a front through a face reappears at the other side)",
+         "a high percentile of one coordinate (m), e.g. a dam-break surge front",
          {ParamSpec{"axis", ParamType::String, std::string("x"), "", "the coordinate"}.one_of({"x", "y", "z"}),
           ParamSpec{"percentile", ParamType::Real, 99.0, "%", "percentile of the particles' coordinate"}.within(0, 100)},
          nullptr, make_compute<Front>(),
-         "one, the coordinate (m)"});
+         "one, the coordinate (m); along a periodic axis of the coordinates as they are, within the domain (a "
+         "front that goes through a face comes back at the other side)"});
 }
 
 }  // namespace pbf

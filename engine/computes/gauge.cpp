@@ -129,14 +129,14 @@ class Gauge : public PointCompute {
 void register_compute_gauge(StyleRegistry& r) {
   r.add({"gauge",
          StyleKind::compute,
-         "water depth (m) along vertical lines: the highest z where the fluid fraction reaches 1/2, above each foot "
-         "(near a periodic face it sees the fluid across it)",
+         "water depth (m) along vertical lines: the highest z where the fluid fraction reaches 1/2, above each foot",
          {{"points", ParamType::PointList, std::nullopt, "m",
            "the foot {x, y, z} of each gauge line, which runs up to the domain top"},
           ParamSpec{"labels", ParamType::StringList, std::nullopt, "",
                     "one name per gauge (default: the values are h1, h2, ..)", true}},
          nullptr, make_compute<Gauge>(),
-         "one per point: `h1`, `h2`, ..., or `LABEL` with `labels` (m)"});
+         "one per point: `h1`, `h2`, ..., or `LABEL` with `labels` (m); near a periodic face the fraction counts "
+         "the fluid across it, so a gauge there reads as one in the middle"});
 }
 
 }  // namespace pbf

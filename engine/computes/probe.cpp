@@ -114,8 +114,7 @@ bool computes_read_pressure(const Simulation& sim) {
 void register_compute_probe(StyleRegistry& r) {
   r.add({"probe",
          StyleKind::compute,
-         "pressure (Pa), velocity (m/s) or density (kg/m^3) at points, kernel-interpolated (Shepard; near a "
-         "periodic face over the particles across it too)",
+         "pressure (Pa), velocity (m/s) or density (kg/m^3) at points, kernel-interpolated (Shepard)",
          {{"points", ParamType::PointList, std::nullopt, "m", "the probe points {{x, y, z}, ...} (inside the domain)"},
           ParamSpec{"field", ParamType::String, std::string("pressure"), "",
                     "what to sample: pressure (gauge, the solver's), velocity, density (the solver's)"}
@@ -124,7 +123,7 @@ void register_compute_probe(StyleRegistry& r) {
                     "one name per point (default: the values are p1.., rho1.., vx1, vy1, vz1, ..)", true}},
          nullptr, make_compute<Probe>(),
          "one per point: `p1`, `p2`, ... (Pa), `rho1`, ... (kg/m^3) or `vx1`, `vy1`, `vz1`, ... (m/s); with "
-         "`labels`, `LABEL` (`LABEL_vx`, ...)"});
+         "`labels`, `LABEL` (`LABEL_vx`, ...); near a periodic face the sums take in the particles across it"});
 }
 
 }  // namespace pbf

@@ -150,7 +150,7 @@ class Box : public Fix, public DensityBoundary {
 void register_box(StyleRegistry& r) {
   r.add({"box",
          StyleKind::fix,
-         "walls at the domain faces (not on a periodic axis): projection, restitution, friction, wall density",
+         "walls at the domain faces: projection, restitution, friction, wall density",
          {ParamSpec{"restitution", ParamType::Real, 0.0, "", "normal velocity kept after an impact, reversed"}.within(0, 1),
           ParamSpec{"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at a wall, exp(-rate dt)"}
               .at_least(0),
