@@ -62,11 +62,17 @@ INSTANTIATE_TEST_SUITE_P(TwoResolutions, Hydrostatic, ::testing::Values(2000, 50
 // within 1% and within one spacing of where it started. In the analytic box, and in the same
 // box as a mesh container (scenarios/geometry/unit_box.obj through the solid's density map),
 // and as a layer periodic along x and y (no side walls: the lattice tiles the period, so the
-// fluid continues through the faces as if endless; issue 32).
+// fluid continues through the faces as if endless; issue 32). WCSPH's layer rings longer: the
+// column settles from zero pressure and starts the layer's acoustic mode (period 4 H / c0 =
+// 0.03 s, velocity amplitude g H / c0 = 0.077 m/s at c0 = 10 sqrt(2 g H)), which stays one
+// dimensional without side walls, where the box's walls turn it into shear that the artificial
+// viscosity damps; its mean speed is bounded by a quarter of that amplitude after 1 s
+// (measured 2026-11-28: at most 0.0102 m/s, against 0.0006 m/s in the box).
 struct StillCase {
   const char* solver;
   const char* walls;
-  const char* periodic = "";  // the domain's periodic axes
+  const char* periodic = "";    // the domain's periodic axes
+  double most_mean_speed = 0.01;  // m/s, after 1 s
 };
 void PrintTo(const StillCase& c, std::ostream* os) { *os << c.solver << " in " << c.walls << " " << c.periodic; }
 
@@ -95,7 +101,7 @@ TEST_P(StillColumn, RestsAtTheDefaults) {
   for (std::size_t k = 0; k < c["time"].size(); ++k) {
     if (c["time"][k] < 1.0) continue;
     if (top1 < 0) top1 = c["top"][k];
-    EXPECT_LT(c["v.avg"][k], 0.01) << "t = " << c["time"][k];
+    EXPECT_LT(c["v.avg"][k], GetParam().most_mean_speed) << "t = " << c["time"][k];
     EXPECT_LT(c["v.max"][k], kMostSpeed) << "t = " << c["time"][k];
     EXPECT_NEAR(c["top"][k], top1, 0.01 * top1) << "t = " << c["time"][k];
     EXPECT_NEAR(c["top"][k], top0, s) << "t = " << c["time"][k];
@@ -107,7 +113,8 @@ TEST_P(StillColumn, RestsAtTheDefaults) {
 INSTANTIATE_TEST_SUITE_P(BothSolvers, StillColumn,
                          ::testing::Values(StillCase{"pbf", "box"}, StillCase{"wcsph", "box"},
                                            StillCase{"pbf", "mesh"}, StillCase{"wcsph", "mesh"},
-                                           StillCase{"pbf", "box", "xy"}, StillCase{"wcsph", "box", "xy"}),
+                                           StillCase{"pbf", "box", "xy"},
+                                           StillCase{"wcsph", "box", "xy", 0.25 * 9.81 * 0.12 / (10 * std::sqrt(2 * 9.81 * 0.12))}),
                          [](const ::testing::TestParamInfo<StillCase>& info) {
                            const std::string periodic = info.param.periodic;
                            return std::string(info.param.solver) + "_" + info.param.walls +
