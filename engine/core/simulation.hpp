@@ -1,6 +1,8 @@
 #pragma once
 // The simulation: the scene (domain, kernel radius, time step, particles), the pipeline of
 // fixes and computes a script assembles, and the run loop. It knows nothing of Lua.
+// simulation.cpp holds the scene and the pipeline, simulation_neighbors.cpp the neighbour
+// lists and the ghosts (other ranks' particles, periodic images), run_loop*.cpp the run.
 #include <cstdint>
 #include <initializer_list>
 #include <memory>
