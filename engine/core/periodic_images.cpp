@@ -1,5 +1,7 @@
 #include "engine/core/periodic_images.hpp"
 
+#include <algorithm>
+
 #include "engine/core/parallel.hpp"
 
 namespace pbf {
@@ -31,14 +33,31 @@ void PeriodicImages::build(Particles& P, const Domain& domain, const GridGeometr
   if (shifts_.empty()) return;
   const std::size_t n = P.size();
   const real* const x[3] = {P.x(), P.y(), P.z()};
-  std::vector<std::int64_t> ids;
-  for (std::size_t i = 0; i < n; ++i)
-    for (const Shift& s : shifts_)
-      if (image_in(domain, grid, range, x, i, s)) {
-        owner_.push_back(static_cast<std::uint32_t>(i));
-        shift_.push_back(s);
-        ids.push_back(P.ids()[i]);
-      }
+  // In parallel, in blocks of particles: each block's images counted, then written after the
+  // blocks before it (in particle order, whichever thread takes a block).
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first(blocks + 1, 0);
+  auto for_each_image = [&](std::size_t b, auto&& image) {
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+      for (const Shift& s : shifts_)
+        if (image_in(domain, grid, range, x, i, s)) image(i, s);
+  };
+#pragma omp parallel for schedule(dynamic)
+  for (std::size_t b = 0; b < blocks; ++b) for_each_image(b, [&](std::size_t, const Shift&) { ++first[b + 1]; });
+  for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+  owner_.resize(first[blocks]);
+  shift_.resize(first[blocks]);
+  std::vector<std::int64_t> ids(first[blocks]);
+#pragma omp parallel for schedule(dynamic)
+  for (std::size_t b = 0; b < blocks; ++b) {
+    std::size_t k = first[b];
+    for_each_image(b, [&](std::size_t i, const Shift& s) {
+      owner_[k] = static_cast<std::uint32_t>(i);
+      shift_[k] = s;
+      ids[k++] = P.ids()[i];
+    });
+  }
   first_ = P.add_ghosts(ids);
   for (FieldId f : P.fields()) {
     std::vector<real*> components;
