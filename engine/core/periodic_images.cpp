@@ -21,10 +21,13 @@ std::vector<Shift> image_shifts(const Domain& domain) {
 }
 
 bool image_in(const Domain& domain, const GridGeometry& grid, const CellRange& range, const real* const x[3],
-              std::size_t i, const Shift& shift) {
-  long cell[3];
-  for (int a = 0; a < 3; ++a) cell[a] = grid.cell_along(a, domain.image(a, x[a][i], shift[a]));
-  return range.contains(cell);
+              std::size_t i, const Shift& shift, const long* own_cell) {
+  for (int a = 0; a < 3; ++a) {
+    if (shift[a] == 0 && !own_cell) continue;  // the range holds the particle's own cell
+    const long cell = shift[a] == 0 ? own_cell[a] : grid.cell_along(a, domain.image(a, x[a][i], shift[a]));
+    if (cell < range.lo[a] || cell >= range.hi[a]) return false;
+  }
+  return true;
 }
 
 void PeriodicImages::build(Particles& P, const Domain& domain, const GridGeometry& grid, const CellRange& range) {
@@ -59,11 +62,10 @@ void PeriodicImages::build(Particles& P, const Domain& domain, const GridGeometr
     });
   }
   first_ = P.add_ghosts(ids);
-  for (FieldId f : P.fields()) {
-    std::vector<real*> components;
+  std::vector<real*> components;  // every field's, copied in one pass
+  for (FieldId f : P.fields())
     for (int c = 0; c < P.spec(f).components; ++c) components.push_back(P.data(f, c));
-    update(components);
-  }
+  update(components);
   real* const positions[3] = {P.x(), P.y(), P.z()};
   update_positions(domain, positions);
 }

@@ -33,9 +33,11 @@ using Shift = std::array<std::int8_t, 3>;  // periods along x, y, z: -1, 0 or 1
 
 // The shifts of the images along the periodic axes of `domain` (none when no axis is): 2, 8 or 26.
 std::vector<Shift> image_shifts(const Domain& domain);
-// The cell of particle i's image `shift` away, and whether it lies in `range`.
+// Whether the cell of particle i's image `shift` away lies in `range`. Along an axis the
+// shift leaves, the image's cell is the particle's own: `own_cell` (its 3 coordinates), or,
+// without it, one `range` holds.
 bool image_in(const Domain& domain, const GridGeometry& grid, const CellRange& range, const real* const x[3],
-              std::size_t i, const Shift& shift);
+              std::size_t i, const Shift& shift, const long* own_cell = nullptr);
 
 class PeriodicImages {
  public:

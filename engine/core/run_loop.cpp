@@ -90,6 +90,8 @@ void RunLoop::prepare() {
     const char* stage = stage_name(static_cast<Stage>(s));
     if (static_cast<Stage>(s) == Stage::neighbors && neighbors_) {
       row_reorder_ = timing_.row(stage, "reorder particles along the grid");
+      if (!sim_.particles_.distributed() && sim_.domain_.any_periodic())
+        row_ghosts_ = timing_.row(stage, "periodic images (ghosts)");
       row_binning_ = timing_.row(stage, "binning (candidates)");
       row_lists_ = timing_.row(stage, "neighbour lists");
     }
@@ -241,7 +243,7 @@ void RunLoop::step() {
   run_stage(Stage::predict);
   if (neighbors_) {
     const Simulation::ListTimes times = sim_.bin_and_list();
-    if (P.distributed()) timing_.add(row_ghosts_, times.ghosts);
+    if (P.distributed() || sim_.domain_.any_periodic()) timing_.add(row_ghosts_, times.ghosts);
     timing_.add(row_binning_, times.binning);
     timing_.add(row_lists_, times.lists);
     neighbor_mean_sum_ += sim_.grid_.mean_neighbors();

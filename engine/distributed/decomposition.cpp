@@ -298,7 +298,7 @@ CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid, co
     send_[k].clear();
     for (std::size_t i = 0; i < n; ++i)
       for (const Shift& s : shifts)
-        if (s == Shift{0, 0, 0} ? reach[k].contains(&cells_[3 * i]) : image_in(domain, grid, reach[k], x, i, s)) {
+        if (image_in(domain, grid, reach[k], x, i, s, &cells_[3 * i])) {
           send_index_[k].push_back(static_cast<std::uint32_t>(i));
           send_shift_[k].push_back(s);
           pack(P, i, send_[k], s);
