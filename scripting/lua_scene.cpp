@@ -8,7 +8,9 @@
 #include "engine/io/restart.hpp"
 #include "engine/io/scene_file.hpp"
 #include "engine/sph/lattice.hpp"
+#include "engine/distributed/comm.hpp"
 #include "engine/geometry/mesh_file.hpp"
+#include "engine/geometry/region.hpp"
 #include "engine/geometry/mesh_sdf.hpp"
 #include "engine/geometry/mesh_surface.hpp"
 #include "engine/geometry/shape.hpp"
@@ -178,6 +180,23 @@ int l_lattice(lua_State* L) {
   return 1;
 }
 
+// pbf.delete{region = ..., ...}: removes the particles inside a region (engine/geometry/region.hpp)
+// and returns how many; the others keep their ids.
+int l_delete(lua_State* L) {
+  State& S = state(L);
+  S.not_running("pbf.delete");
+  const Params p = table_arg(L, 1, "pbf.delete", Region::params());
+  Region region(p);
+  region.check_scene(S.sim);
+  std::vector<char> drop;
+  region.mark_inside(S.sim, drop);
+  std::size_t removed = S.sim.particles().remove(drop);
+  if (S.sim.particles().distributed()) removed = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(removed)));
+  S.sim.positions_changed();
+  lua_pushinteger(L, static_cast<lua_Integer>(removed));
+  return 1;
+}
+
 int l_read_scene(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.read_scene");
@@ -234,7 +253,8 @@ int l_write_restart(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.write_restart");
   const std::string path = lua::path(L, 1, "pbf.write_restart: the path");
-  if (S.sim.global_count() == 0) throw Error("pbf.write_restart: there are no particles to save");
+  // (A scene drained of its particles, or waiting for an emitter's, is saved: it runs on.)
+  if (S.sim.particle_mass() == 0) throw Error("pbf.write_restart: there are no particles to save");
   push_restart_summary(L, write_restart(S.sim, path));
   return 1;
 }
@@ -295,6 +315,7 @@ std::vector<luaL_Reg> scene_functions() {
           {"timestep", guarded<l_setting<&Simulation::timestep, &Simulation::set_timestep, kTimestep>>},
           {"rest_density", guarded<l_setting<&Simulation::rest_density, &Simulation::set_rest_density, kRestDensity>>},
           {"lattice", guarded<l_lattice>},
+          {"delete", guarded<l_delete>},
           {"read_scene", guarded<l_read_scene>},
           {"read_particles", guarded<l_read_particles>},
           {"write_restart", guarded<l_write_restart>},

@@ -96,17 +96,19 @@ int l_value(lua_State* L) {
   const std::string id = lua::string(L, 1, "pbf.value: the compute id");
   Compute* c = S.sim.find_compute(id);
   if (!c) throw Error(fmt::format("pbf.value: no compute with id '{}'", id));
-  if (S.sim.global_count() == 0) throw Error(fmt::format("pbf.value('{}'): there are no particles yet", id));
+  if (S.sim.global_count() == 0 && S.sim.particle_mass() == 0)  // (a drained scene has none, and is measured)
+    throw Error(fmt::format("pbf.value('{}'): there are no particles yet", id));
   if (S.sim.particles().distributed() && !c->runs_distributed())
     throw Error(fmt::format("pbf.value('{}'): compute '{}' ({}) does not run on several MPI ranks yet", id, id,
                             c->style()));
   std::vector<double> v;
-  if (c->per_particle()) {
-    c->evaluate_per_particle(S.sim, v);
+  if (c->per_particle()) {  // the value of the particle with id k at key k + 1 (gaps: removed particles)
+    std::vector<std::int64_t> ids;
+    c->evaluate_per_particle(S.sim, ids, v);
     lua_createtable(L, lua::size_hint(v.size()), 0);
     for (std::size_t i = 0; i < v.size(); ++i) {
       lua_pushnumber(L, v[i]);
-      lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+      lua_rawseti(L, -2, static_cast<lua_Integer>(ids[i] + 1));
     }
     return 1;
   }

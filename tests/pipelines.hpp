@@ -95,18 +95,37 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
              {"rho", "probe", {{"points", points}, {"field", std::string("density")}}},
              {"h", "gauge", {{"points", points}}}}};
   }
-  // The velocity sums (the Laplacian viscosity and XSPH), and a damping zone at the box's far end.
+  // The velocity sums (the Laplacian viscosity, with the no-slip walls' term, and XSPH), and a
+  // damping zone at the box's far end.
   if (name == "WcsphLaplacianViscosityXsph") {
     auto fixes = wcsph("summation");
     fixes[3].params = {{"kind", std::string("laplacian")}, {"nu", 1e-3}};
     fixes.push_back({"xsph", "xsph", {}});
     fixes.push_back({"zone", "damping", {{"from", Vec3{0.09, 0, 0}}, {"to", Vec3{0.2, 0, 0}}, {"rate", 50.0}}});
-    fixes.push_back(kWalls);
+    fixes.push_back({"walls", "box", {{"no_slip", true}}});
     return {0.0002, fixes, {}};
+  }
+  // Sinks on the block's way, each with the flow compute: PBF's from step 5 on, WCSPH's from
+  // about step 20 (the block's front layer, at 0.095 m, moves 0.1 mm a step).
+  if (name == "PbfOutflow")
+    return {0.002,
+            {kGravity, {"pbf", "pbf", {}}, kWalls,
+             {"drain", "outflow", {{"region", std::string("half_space")}, {"point", Vec3{0.1, 0, 0}}, {"normal", Vec3{1, 0, 0}}}}},
+            {{"out", "flow", {{"fix", std::string("drain")}}}}};
+  if (name == "WcsphOutflow") {
+    auto fixes = wcsph("continuity");
+    fixes.push_back(kWalls);
+    fixes.push_back({"drain", "outflow", {{"region", std::string("box")}, {"lo", Vec3{0.097, 0, 0}}, {"hi", Vec3{0.2, 0.1, 0.2}}}});
+    return {0.0002, fixes, {{"out", "flow", {{"fix", std::string("drain")}}}}};
   }
   ADD_FAILURE() << "no pipeline " << name;
   return {};
 }
+
+// Every pipeline above, for the tests that run them all (::testing::ValuesIn).
+inline const std::vector<const char*> kPipelines = {
+    "PbfVorticityXsph", "WcsphSummationLeapfrogArtificialViscosity", "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid",
+    "SampleProbesGauge", "WcsphLaplacianViscosityXsph", "PbfOutflow", "WcsphOutflow"};
 
 // A block of 10 x 10 x 8 particles (spacing 1 cm, h = 2 cm) moving at 0.5 m/s along x, in
 // a box twice as long.

@@ -18,7 +18,8 @@ namespace {
 std::vector<double> evaluate(Simulation& sim, const std::string& style) {
   auto c = StyleRegistry::builtin().make_compute("c", style, {});
   std::vector<double> v;
-  if (c->per_particle()) c->evaluate_per_particle(sim, v);
+  std::vector<std::int64_t> ids;
+  if (c->per_particle()) c->evaluate_per_particle(sim, ids, v);
   else c->evaluate(sim, v);
   return v;
 }

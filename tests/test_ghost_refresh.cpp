@@ -100,9 +100,7 @@ TEST_P(GhostRefresh, TheCheckedRunEndsWithThePlainRunsBits) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Pipelines, GhostRefresh,
-                         ::testing::Values("PbfVorticityXsph", "WcsphSummationLeapfrogArtificialViscosity",
-                                           "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid", "SampleProbesGauge",
-                                           "WcsphLaplacianViscosityXsph"),
+                         ::testing::ValuesIn(kPipelines),
                          [](const auto& info) { return std::string(info.param); });
 
 using Reads = NeighbourNudge::Reads;

@@ -95,7 +95,8 @@ TEST(Params, EveryDefaultIsInItsRange) {
     for (const auto& p : s.params) {
       if (p.default_value) defaults.emplace_back(p.name, *p.default_value);
       if (!p.default_value && !p.optional) {
-        if (p.type == ParamType::String) defaults.emplace_back(p.name, std::string("name"));
+        if (p.type == ParamType::String)  // a name, or the first of its choices
+          defaults.emplace_back(p.name, p.choices.empty() ? std::string("name") : p.choices.front());
         else if (p.type == ParamType::StringList) defaults.emplace_back(p.name, Names{"name"});
         else if (p.type == ParamType::PointList) defaults.emplace_back(p.name, Points{{0, 0, 0}});
         else if (p.type == ParamType::Real) defaults.emplace_back(p.name, 1.0);

@@ -181,7 +181,7 @@ TEST(Restart, DamagedFilesAreClearErrors) {
 
   bytes = good;
   put_u32(bytes, 8, 99);
-  expect_rejected(dir, bytes, "restart format version 99; this pbfengine reads version 1");
+  expect_rejected(dir, bytes, "restart format version 99; this pbfengine reads versions 1 to 2");
 
   bytes = good;
   put_u32(bytes, 12, 0x04030201);
@@ -200,17 +200,34 @@ TEST(Restart, DamagedFilesAreClearErrors) {
   expect_rejected(dir, bytes, "checksum mismatch");
 
   // Damage behind a valid checksum: the reader's own bounds checks.
-  const std::size_t count_at = 32 + 6 * 8 + 3 * 8 + 3 * 8;  // after domain, h/dt/rho0 and the clock
+  const std::size_t periodic_at = 32 + 6 * 8 + 3 * 8 + 3 * 8;  // after domain, h/dt/rho0 and the clock
+  const std::size_t next_id_at = periodic_at + 4, count_at = next_id_at + 8;
+  bytes = good;
+  put_u32(bytes, periodic_at, 8);  // an axis beyond z
+  fix_checksum(bytes);
+  expect_rejected(dir, bytes, "the periodic axes (0x8) are damaged");
+
+  bytes = good;
+  put_u64(bytes, next_id_at, 124);  // fewer ids ever given than particles saved
+  fix_checksum(bytes);
+  expect_rejected(dir, bytes, "the next id, 124, is damaged (the file holds 125 particles)");
+
+  bytes = good;
+  put_u64(bytes, count_at + 8, 125);  // an id the file says was never given
+  fix_checksum(bytes);
+  expect_rejected(dir, bytes, "particle id 125 outside 0..124");
+
   bytes = good;
   put_u64(bytes, count_at, std::uint64_t{1} << 60);  // a particle count no file could hold
+  put_u64(bytes, next_id_at, std::uint64_t{1} << 60);
   fix_checksum(bytes);
   expect_rejected(dir, bytes, "the data end early");
 
   bytes = good;
-  put_u64(bytes, count_at + 8, 7);  // particle 0 given id 7 twice: not a permutation
+  put_u64(bytes, count_at + 8, 7);  // particle 0 given id 7 twice
   put_u64(bytes, count_at + 16, 7);
   fix_checksum(bytes);
-  expect_rejected(dir, bytes, "permutation");
+  expect_rejected(dir, bytes, "particle id 7 is held twice");
 
   expect_rejected(dir, "", "too short");
   Simulation sim;
@@ -218,8 +235,12 @@ TEST(Restart, DamagedFilesAreClearErrors) {
 }
 
 // A restart assembled part by part, with a correct header: each test damages one part
-// behind a valid checksum. Two particles 0.17 m apart, inside the domain, at rest.
+// behind a valid checksum. Two particles 0.17 m apart, inside the domain, at rest. Version 1
+// (no periodic axes or next id: ids 0..n-1) by default, which every later reader reads.
 struct RestartParts {
+  std::uint32_t version = 1;
+  std::uint32_t periodic = 0;  // version 2 on
+  std::int64_t next_id = 2;
   double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, h = 0.3, dt = 0.001, rho0 = 1000;  // h: 1.7 spacings
   std::int64_t step = 10, step_base = 0;
   double time_base = 0;
@@ -244,6 +265,10 @@ struct RestartParts {
     w.put(step);
     w.put(step_base);
     w.put(time_base);
+    if (version >= 2) {
+      w.put(periodic);
+      w.put(next_id);
+    }
     w.put<std::uint64_t>(ids.size());
     w.put_array(ids.data(), ids.size());
     w.put(static_cast<std::uint32_t>(fields.size()));
@@ -263,7 +288,7 @@ struct RestartParts {
     ByteWriter header;
     const unsigned char magic[8] = {0x89, 'P', 'B', 'F', 'R', 'S', 'T', '\n'};
     header.put_array(magic, 8);
-    header.put<std::uint32_t>(1);
+    header.put(version);
     header.put<std::uint32_t>(0x01020304);
     header.put(static_cast<std::uint32_t>(sizeof(real)));
     header.put(static_cast<std::uint32_t>(crc32_z(0, payload.data(), payload.size())));
@@ -286,6 +311,40 @@ TEST(Restart, TheAssembledRestartIsValid) {  // so that the tests below fail for
   EXPECT_EQ(summary.particles, 2u);
   EXPECT_DOUBLE_EQ(sim.time(), 0.5 + 6 * 0.001);
   EXPECT_EQ(sim.particles().x()[1], real(0.2));
+}
+
+// Version 2 keeps the ids' gaps (removed particles) and the next id to give, so that a particle
+// created after the restart gets the id it would have got in the straight run, and the
+// periodic axes.
+TEST(Restart, IdsWithGapsAndTheNextIdAreRestored) {
+  const auto dir = temp_dir("restart-gaps");
+  RestartParts parts;
+  parts.version = 2;
+  parts.ids = {8, 3};
+  parts.next_id = 10;
+  parts.periodic = 0b101;
+  write_file(dir / "gaps.restart", parts.file());
+  Simulation sim;
+  read_restart(sim, (dir / "gaps.restart").string());
+  const auto& P = sim.particles();
+  ASSERT_EQ(P.size(), 2u);
+  EXPECT_EQ(P.ids()[0], 8);
+  EXPECT_EQ(P.ids()[1], 3);
+  EXPECT_EQ(P.next_id(), 10);
+  EXPECT_EQ(P.first_new_id(), 10);  // the saved particles are not new
+  EXPECT_TRUE(sim.domain().periodic[0]);
+  EXPECT_FALSE(sim.domain().periodic[1]);
+  EXPECT_TRUE(sim.domain().periodic[2]);
+  const real zero[3] = {0, 0, 0}, at[3] = {0.5, 0.5, 0.5};
+  sim.particles().add(at, zero, real(0.001));
+  EXPECT_EQ(P.ids()[2], 10);
+  // Written again, the same bytes (the writer keeps the gaps and the axes).
+  write_restart(sim, (dir / "again.restart").string());
+  Simulation back;
+  read_restart(back, (dir / "again.restart").string());
+  EXPECT_EQ(back.particles().next_id(), 11);
+  EXPECT_EQ(back.particles().ids()[0], 8);
+  EXPECT_TRUE(back.domain().periodic[2]);
 }
 
 // The clock is checked on reading: a NaN time or a step near the int64 limit (undefined

@@ -59,7 +59,9 @@ TEST_P(Continued, EndsBitForBitAsTheStraightRun) {
 
   ASSERT_EQ(continued.step(), kSteps);
   const std::string a = read_file(dir / "straight.restart"), b = read_file(dir / "continued.restart");
-  ASSERT_GT(a.size(), 800 * (8 + 7 * sizeof(real)));  // 800 particles: ids, positions, velocities, masses
+  // Each particle left: its id, position, velocity and mass.
+  ASSERT_GT(straight.global_count(), 0u);
+  ASSERT_GT(a.size(), straight.global_count() * (8 + 7 * sizeof(real)));
   EXPECT_TRUE(a == b) << "the restart files differ";
   expect_same_fields(straight.particles(), continued.particles());
   EXPECT_EQ(read_file(out / "s.csv"), samples);
@@ -69,7 +71,5 @@ TEST_P(Continued, EndsBitForBitAsTheStraightRun) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RestartPipelines, Continued,
-                         ::testing::Values("PbfVorticityXsph", "WcsphSummationLeapfrogArtificialViscosity",
-                                           "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid", "SampleProbesGauge",
-                                           "WcsphLaplacianViscosityXsph"),
+                         ::testing::ValuesIn(kPipelines),
                          [](const auto& info) { return std::string(info.param); });

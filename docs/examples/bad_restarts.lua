@@ -19,4 +19,4 @@ write("corrupt.restart", patch(40, string.char(good:byte(41) ~ 0xff)))
 write("bom.restart", patch(12, string.pack("<I4", 0x01020305)))
 write("swapped.restart", patch(12, string.pack(">I4", 0x01020304)))   -- written big-endian
 write("precision.restart", patch(16, string.pack("<I4", 2)))
-write("version.restart", patch(8, string.pack("<I4", 2)))
+write("version.restart", patch(8, string.pack("<I4", 3)))

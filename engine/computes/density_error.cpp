@@ -1,6 +1,7 @@
 // density_error: rho/rho0 - 1 over the particles, rho the density the solver uses (as the
 // density compute): its average and maximum, and the average compression, the mean of
 // max(rho/rho0 - 1, 0) (what a one-sided solver removes).
+#include <cmath>
 #include <algorithm>
 
 #include "engine/registry/builtin_styles.hpp"
@@ -31,6 +32,7 @@ class DensityError : public Compute {
 #pragma omp parallel for reduction(max : most)
     for (std::size_t i = 0; i < n; ++i) most = std::max(most, rho[i] * inv - 1);
     values = {avg, ranks ? comm::max(most) : most, compression};
+    if (sim.global_count() == 0) values.assign(3, std::nan(""));  // no fluid: nothing to measure
   }
 };
 

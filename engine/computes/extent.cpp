@@ -39,6 +39,7 @@ class Extent : public Compute {
       comm::max(highs);
       values = {lows[0], highs[0], lows[1], highs[1], lows[2], highs[2]};
     }
+    if (sim.global_count() == 0) values.assign(6, std::nan(""));  // no fluid: no extent
   }
 };
 

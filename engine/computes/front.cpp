@@ -23,6 +23,10 @@ class Front : public Compute {
   bool runs_distributed() const override { return true; }  // the percentile of every rank's particles
   void evaluate(Simulation& sim, std::vector<double>& values) override {
     const auto& P = sim.particles();
+    if (sim.global_count() == 0) {  // no fluid (not yet in, or all gone): no front
+      values = {std::nan("")};
+      return;
+    }
     const real* c = axis_ == 0 ? P.x() : (axis_ == 1 ? P.y() : P.z());
     std::vector<real> coords(c, c + P.size());
     const auto k = static_cast<std::size_t>(std::floor(percentile_ / 100 * double(sim.global_count() - 1) + 0.5));

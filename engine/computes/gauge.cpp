@@ -52,7 +52,7 @@ class Gauge : public PointCompute {
     if (sim.global_count() == 0) return;  // all dry (and no mean mass to take a spacing from)
     const Kernels& K = sim.kernels();
     const double inv_rho0 = 1 / sim.rest_density(), top = sim.domain().hi[2];
-    const double spacing = lattice_spacing(P.mean_mass(), K, sim.rest_density());
+    const double spacing = lattice_spacing(sim.particle_mass(), K, sim.rest_density());
     const NeighborGrid& cells = sim.point_cells();  // may rebuild the ghosts: pointers after it
     const PointQuery query(cells, P.x(), P.y(), P.z(), sim.kernel_radius());
     const real* m = P.mass();

@@ -29,6 +29,7 @@ class Speed : public Compute {
     const bool ranks = P.distributed();
     values = {ranks ? comm::max(most) : most,
               deterministic_sum(P.size(), speed, ranks) / double(sim.global_count())};
+    if (sim.global_count() == 0) values.assign(2, std::nan(""));  // no fluid: no speed
   }
 };
 

@@ -43,8 +43,11 @@ class Compute {
   virtual bool per_particle() const { return false; }
   // Whether it measures over every rank's particles in a distributed run (else refused there).
   virtual bool runs_distributed() const { return false; }
-  // One value per particle, indexed by particle id (the input order).
-  virtual void evaluate_per_particle(Simulation&, std::vector<double>& by_id) { by_id.clear(); }
+  // One value per particle of every rank, in ascending id order, with the ids.
+  virtual void evaluate_per_particle(Simulation&, std::vector<std::int64_t>& ids, std::vector<double>& values) {
+    ids.clear();
+    values.clear();
+  }
 
  private:
   std::string id_, style_;

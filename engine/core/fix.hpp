@@ -17,6 +17,7 @@ class DensityBoundary;
 class SolidBody;
 class ByteWriter;
 class ByteReader;
+class ParticleFlow;
 
 // Order within a stage: the solver first, then other fixes, then boundaries, then outputs,
 // each group in script order. So in each constraint iteration the density correction runs
@@ -49,7 +50,9 @@ class Fix {
   // speed, m/s; 0: none): time-step control keeps dt below h over it.
   virtual double signal_speed() const { return 0; }
   // The kinematic viscosity (m^2/s) the fix applies explicitly, for the viscous limit of
-  // time-step control (0: none).
+  // time-step control (0: none). A fix that reports one applies the no-slip walls' viscous
+  // pull (DensityBoundary::add_no_slip), so those walls leave the touching particles'
+  // velocity to it.
   virtual double kinematic_viscosity() const { return 0; }
   // How this fix moves particles through time, if it does (at most one fix per pipeline).
   virtual Integration integration() const { return Integration::none; }
@@ -66,6 +69,12 @@ class Fix {
   virtual bool runs_distributed() const { return false; }
   // A solid the outputs draw (nullptr: none).
   virtual const SolidBody* solid_body() const { return nullptr; }
+  // What this fix has let into the scene or out of it (emitter, outflow, open faces), for the
+  // `flow` compute (nullptr: it adds and removes no particles).
+  virtual const ParticleFlow* particle_flow() const { return nullptr; }
+  // The mass of each particle this fix creates during a run (an emitter's; 0: it creates
+  // none): a scene that starts empty takes its constants from it (Simulation::particle_mass).
+  virtual double created_mass() const { return 0; }
 
   // Start of every run, before any fix's init(): a fix may change the scene here (a solid
   // leaves out the fluid created inside it), so every init() sees the particles of the run.
@@ -75,11 +84,19 @@ class Fix {
   virtual void init(Simulation&) {}
   // Start of every run, after the init() of every fix but the outputs, which come after it:
   // the particles created since the last run started (a lattice or a file added between
-  // runs; all of them at the first run), by index. Their fields hold 0. A fix whose field
-  // carries a value from step to step sets theirs to where a fluid at rest starts (wcsph's
-  // continuity density: rest density); a field computed before it is read needs nothing.
-  // Called on every rank of a distributed run (a rank may have none), so it may be collective.
+  // runs; all of them at the first run), by index; and, within a run, after the exchange
+  // stage that created some (Simulation::running() then). Their fields hold 0. A fix whose
+  // field carries a value from step to step sets theirs to where a fluid at rest starts
+  // (wcsph's continuity density: rest density); a field computed before it is read needs
+  // nothing. Called on every rank of a distributed run (a rank may have none), so it may be
+  // collective.
   virtual void init_new_particles(Simulation&, std::span<const std::uint32_t> /*fresh*/) {}
+  // The one point of a step where particles may be added (Particles::add with
+  // finish_source, so that every rank count numbers them alike) and removed
+  // (Particles::remove): its start, before migration, binning and ghosts, so that the
+  // neighbour order, the exact sums and the ghosts' place at the end of every array are as
+  // in any other step. Anywhere else a change of the particle set is refused.
+  virtual void exchange(Simulation&) {}
   virtual void external_forces(Simulation&) {}
   virtual void predict(Simulation&) {}
   virtual void forces(Simulation&) {}

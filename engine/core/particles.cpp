@@ -16,7 +16,15 @@ Particles::Particles() : distributed_(comm::distributed()) {
   declare({"mass", 1, "mass (kg)"});
 }
 
+void Particles::check_not_frozen(const char* what) const {
+  if (frozen_)
+    throw Error(fmt::format("particles {} during a step: only a fix's exchange hook (the step's start) may add or "
+                            "remove particles",
+                            what));
+}
+
 void Particles::add(const real position[3], const real velocity[3], real mass) {
+  check_not_frozen("added");
   if (ghosts_) drop_ghosts();  // (the last run's: rebuilt when next needed)
   for (int c = 0; c < 3; ++c) fields_[kPosition].data[c].push_back(position[c]);
   for (int c = 0; c < 3; ++c) fields_[kVelocity].data[c].push_back(velocity[c]);
@@ -91,88 +99,19 @@ void Particles::erase(const std::vector<char>& drop) {
 }
 
 std::size_t Particles::remove(const std::vector<char>& drop) {
+  check_not_frozen("removed");
   const std::size_t n = size();
-  std::vector<std::uint32_t> kept;
-  kept.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (!drop[i]) kept.push_back(static_cast<std::uint32_t>(i));
+  std::size_t removed = 0;
+  for (std::size_t i = 0; i < n; ++i) removed += drop[i] ? 1 : 0;
   // (Whether any rank removes one: the common case, none, costs one sum.)
-  const std::size_t removed = n - kept.size();
-  if ((distributed_ ? comm::sum(static_cast<std::int64_t>(removed)) : std::int64_t(removed)) == 0) return 0;
-  if (ghosts_) drop_ghosts();  // (the last run's: rebuilt when next needed)
-  std::vector<std::int64_t> old_ids(ids_.begin(), ids_.begin() + static_cast<std::ptrdiff_t>(n));
-  for (Field& field : fields_)
-    for (auto& component : field.data) {
-      if (component.empty()) continue;  // a freed field
-      for (std::size_t k = 0; k < kept.size(); ++k) component[k] = component[kept[k]];
-      component.resize(kept.size());
-    }
-  ids_.resize(kept.size());
-  // The renumbering keeps the ids' order, so the started particles keep the lowest ids: as
-  // many as remain of them.
-  std::int64_t started_removed = 0;
-  for (std::size_t i = 0; i < n; ++i) started_removed += drop[i] && old_ids[i] < settled_;
-  settled_ -= distributed_ ? comm::sum(started_removed) : started_removed;
-  if (distributed_) {
-    renumber_across_ranks(old_ids, drop);
-    return n - kept.size();
-  }
-  // New ids: the rank of each remaining particle's old id.
-  std::vector<std::uint32_t> by_id(kept.size());
-  for (std::size_t k = 0; k < by_id.size(); ++k) by_id[k] = static_cast<std::uint32_t>(k);
-  std::sort(by_id.begin(), by_id.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return old_ids[kept[a]] < old_ids[kept[b]]; });
-  for (std::size_t rank = 0; rank < by_id.size(); ++rank) ids_[by_id[rank]] = static_cast<std::int64_t>(rank);
-  next_id_ = static_cast<std::int64_t>(kept.size());
-  return n - kept.size();
-}
-
-// A remaining particle's new id is its old one less the particles removed with smaller ids on
-// every rank. This rank's ids, sorted, fall into runs of consecutive ids (a share of a lattice
-// or a file is one run); the runs of all ranks, gathered with their removed counts and put in
-// order, give each run the count removed before it.
-void Particles::renumber_across_ranks(const std::vector<std::int64_t>& old_ids, const std::vector<char>& drop) {
-  const std::size_t n = old_ids.size();
-  std::vector<std::uint32_t> by_id(n);
-  for (std::size_t i = 0; i < n; ++i) by_id[i] = static_cast<std::uint32_t>(i);
-  std::sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return old_ids[a] < old_ids[b]; });
-  std::vector<std::int64_t> runs;  // (first id, removed in the run) pairs
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t i = by_id[k];
-    if (k == 0 || old_ids[i] != old_ids[by_id[k - 1]] + 1) runs.insert(runs.end(), {old_ids[i], 0});
-    runs.back() += drop[i] ? 1 : 0;
-  }
-  const std::vector<std::int64_t> all = comm::gather_all_varying(runs);
-  std::vector<std::pair<std::int64_t, std::int64_t>> ordered;
-  for (std::size_t r = 0; r + 1 < all.size(); r += 2) ordered.emplace_back(all[r], all[r + 1]);
-  std::sort(ordered.begin(), ordered.end());
-  std::int64_t removed_total = 0;
-  for (auto& [first, removed] : ordered) {
-    const std::int64_t in_run = removed;
-    removed = removed_total;  // now: removed before the run
-    removed_total += in_run;
-  }
-  // The kept particles in memory order are those of old_ids without the dropped ones.
-  std::vector<std::int64_t> new_id(n, -1);
-  std::int64_t removed_before = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t i = by_id[k];
-    if (k == 0 || old_ids[i] != old_ids[by_id[k - 1]] + 1) {
-      const auto run = std::lower_bound(ordered.begin(), ordered.end(), std::make_pair(old_ids[i], std::int64_t{0}),
-                                        [](const auto& a, const auto& b) { return a.first < b.first; });
-      removed_before = run->second;
-    }
-    if (drop[i])
-      ++removed_before;
-    else
-      new_id[i] = old_ids[i] - removed_before;
-  }
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!drop[i]) ids_[kept++] = new_id[i];
-  global_ -= static_cast<std::size_t>(removed_total);
+  const auto all = static_cast<std::size_t>(distributed_ ? comm::sum(static_cast<std::int64_t>(removed))
+                                                         : static_cast<std::int64_t>(removed));
+  if (all == 0) return 0;
+  if (ghosts_) drop_ghosts();  // (rebuilt when next needed)
+  erase(drop);
+  global_ -= all;
   unplaced_ = std::min(unplaced_, global_);
-  next_id_ = static_cast<std::int64_t>(global_);
+  return removed;
 }
 
 void Particles::fill(Field& field) const {
@@ -237,33 +176,37 @@ double Particles::mean_mass() const {
          static_cast<double>(global_size());
 }
 
-void Particles::reset(std::vector<std::int64_t> ids) {
-  std::vector<char> seen(ids.size(), 0);
-  for (std::int64_t id : ids) {
-    if (id < 0 || static_cast<std::uint64_t>(id) >= ids.size() || seen[static_cast<std::size_t>(id)])
-      throw Error(fmt::format("particle ids must be a permutation of 0..{}; found {}", ids.size() - 1, id));
-    seen[static_cast<std::size_t>(id)] = 1;
-  }
+void Particles::reset(std::vector<std::int64_t> ids, std::int64_t next_id) {
+  check_ids(ids, next_id);
   ghosts_ = 0;
   ids_ = std::move(ids);
-  next_id_ = settled_ = static_cast<std::int64_t>(ids_.size());  // their fields are the file's
+  next_id_ = settled_ = next_id;  // their fields are the file's
   global_ = ids_.size();
   unplaced_ = distributed_ ? global_ : 0;
   for (auto& field : fields_)
     if (field.live) fill(field);
 }
 
-void Particles::reset_share(std::vector<std::int64_t> ids, std::size_t global) {
-  for (std::int64_t id : ids)
-    if (id < 0 || static_cast<std::uint64_t>(id) >= global)
-      throw Error(fmt::format("particle ids must lie in 0..{}; found {}", global - 1, id));
+void Particles::reset_share(std::vector<std::int64_t> ids, std::size_t global, std::int64_t next_id) {
+  check_ids(ids, next_id);
   ghosts_ = 0;
   ids_ = std::move(ids);
-  next_id_ = settled_ = static_cast<std::int64_t>(global);
+  next_id_ = settled_ = next_id;
   global_ = global;
   unplaced_ = global;
   for (auto& field : fields_)
     if (field.live) fill(field);
+}
+
+void check_ids(std::span<const std::int64_t> ids, std::int64_t next_id) {
+  std::vector<std::int64_t> sorted(ids.begin(), ids.end());
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    if (sorted[k] < 0 || sorted[k] >= next_id)
+      throw Error(fmt::format("particle id {} outside 0..{} (the next id to give is {})", sorted[k], next_id - 1,
+                              next_id));
+    if (k > 0 && sorted[k] == sorted[k - 1]) throw Error(fmt::format("particle id {} is held twice", sorted[k]));
+  }
 }
 
 void Particles::swap_values(FieldId field, int component, std::vector<real>& values) {
@@ -294,9 +237,28 @@ void Particles::permute(std::span<const std::uint32_t> order, std::vector<real>*
   ids_.swap(id_scratch_);
 }
 
+std::vector<std::uint32_t> Particles::order_by_id() const {
+  const std::size_t n = size();
+  std::vector<std::uint32_t> order(n);
+  if (n == 0) return order;
+  const auto [lo, hi] = std::minmax_element(ids_.begin(), ids_.begin() + static_cast<std::ptrdiff_t>(n));
+  const auto range = static_cast<std::uint64_t>(*hi - *lo) + 1;
+  if (range <= 2 * static_cast<std::uint64_t>(n)) {  // few gaps: a bucket per id, in one pass
+    std::vector<std::uint32_t> slot(range, kNoIndex);
+    for (std::size_t i = 0; i < n; ++i) slot[static_cast<std::size_t>(ids_[i] - *lo)] = static_cast<std::uint32_t>(i);
+    std::size_t k = 0;
+    for (std::uint32_t i : slot)
+      if (i != kNoIndex) order[k++] = i;
+    return order;
+  }
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return ids_[a] < ids_[b]; });
+  return order;
+}
+
 std::vector<std::uint32_t> Particles::index_of_id() const {
   if (distributed_) throw Error("Particles::index_of_id: the particles are distributed among ranks");
-  std::vector<std::uint32_t> index(size());
+  std::vector<std::uint32_t> index(static_cast<std::size_t>(next_id_), kNoIndex);
   for (std::size_t i = 0; i < size(); ++i) index[static_cast<std::size_t>(ids_[i])] = static_cast<std::uint32_t>(i);
   return index;
 }

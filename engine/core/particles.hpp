@@ -48,6 +48,11 @@ class Particles {
   // Appends one particle; its id is its creation index (the input order).
   void add(const real position[3], const real velocity[3], real mass);
 
+  // Within a run's step, particles may be added and removed only at the exchange stage: the
+  // run loop freezes the set for every other stage, and add, remove and append refuse then.
+  void freeze(bool frozen) { frozen_ = frozen; }
+  bool frozen() const { return frozen_; }
+
   // A distributed run (under an MPI launcher, from the start): each rank holds a part of the
   // particles; the ids stay those of the whole set. A source of particles (a lattice, a file)
   // is created in shares: each rank creates the candidates share(count) names, in order, with
@@ -74,6 +79,7 @@ class Particles {
   // The decomposition put every particle on the rank that owns its cell.
   void mark_placed() { unplaced_ = 0; }
   // The id the next particle added takes: the count of particles ever created on all ranks.
+  // Part of the scene's state (restarts keep it): ids are never reused.
   std::int64_t next_id() const { return next_id_; }
   void set_next_id(std::int64_t id) { next_id_ = id; }
   // Particles with ids from this one on were created since the last run started (their
@@ -83,7 +89,8 @@ class Particles {
   void settle() { settled_ = next_id_; }
   // Zeroed particles with these ids after this rank's own (no ghosts may be there).
   void append(std::span<const std::int64_t> ids);
-  // Removes the particles whose `drop` entry is non-zero, keeping the others' order and ids.
+  // Removes this rank's particles whose `drop` entry is non-zero, keeping the others' order
+  // and ids, without counting them gone (migration: they live on on another rank).
   void erase(const std::vector<char>& drop);
   // Zeroed ghosts with these ids after those there are; returns the index of the first.
   std::size_t add_ghosts(std::span<const std::int64_t> ids);
@@ -134,23 +141,29 @@ class Particles {
   const std::int64_t* ids() const { return ids_.data(); }
 
   // Replaces every particle by `ids.size()` zeroed ones with these ids (a restart fills in
-  // the fields). The ids must be a permutation of 0..n-1.
-  void reset(std::vector<std::int64_t> ids);
+  // the fields): distinct, in 0..next_id-1, where next_id is the id the next particle created
+  // takes (ids are never reused, so removed particles leave gaps).
+  void reset(std::vector<std::int64_t> ids, std::int64_t next_id);
   // A distributed run's reset: this rank's share of a set of `global` particles (ids in
-  // 0..global-1, each on one rank), not yet placed.
-  void reset_share(std::vector<std::int64_t> ids, std::size_t global);
+  // 0..next_id-1, each on one rank), not yet placed.
+  void reset_share(std::vector<std::int64_t> ids, std::size_t global, std::int64_t next_id);
 
-  // Removes the particles whose `drop` entry is non-zero, keeping the others' order; ids
-  // are renumbered 0..n-1 in their old order (the input order of those that remain), across
-  // every rank in a distributed run (collective there; ghosts are dropped). Returns how many
-  // this rank removed.
+  // Removes the particles whose `drop` entry is non-zero, keeping the others' order and ids:
+  // an id, once given, names one particle for the whole life of the scene, and is never
+  // given again. Collective in a distributed run (the global count; ghosts are dropped).
+  // Returns how many this rank removed.
   std::size_t remove(const std::vector<char>& drop);
 
   // Reorders every field: particle i of the result is particle order[i] of before.
   // `buffer`: an array to gather into, which trades places with each field's array in turn
   // (else permute takes its own); it holds one of them, reordered, afterwards.
   void permute(std::span<const std::uint32_t> order, std::vector<real>* buffer = nullptr);
-  // index_of_id()[k]: the current index of the particle with id k.
+  // This process's particles in ascending id order: order_by_id()[k] is the memory index of
+  // the particle with the k-th smallest id (what files written in id order follow).
+  std::vector<std::uint32_t> order_by_id() const;
+  // index_of_id()[id]: the current index of the particle with that id, kNoIndex for an id
+  // no particle has now (removed); one entry per id ever given, so for tests and checks.
+  static constexpr std::uint32_t kNoIndex = 0xffffffffu;
   std::vector<std::uint32_t> index_of_id() const;
 
  private:
@@ -166,11 +179,15 @@ class Particles {
   std::size_t ghosts_ = 0, global_ = 0, unplaced_ = 0;
   std::int64_t next_id_ = 0, settled_ = 0;
   bool distributed_ = false;
-  void renumber_across_ranks(const std::vector<std::int64_t>& old_ids, const std::vector<char>& drop);
+  bool frozen_ = false;
+  void check_not_frozen(const char* what) const;
   void resize_all(std::size_t n);  // every live field and the ids
   // permute()'s buffer for the ids, kept so that reordering allocates nothing.
   std::vector<std::int64_t> id_scratch_;
 };
+
+// Throws unless the ids are distinct and in 0..next_id-1 (what a restart's must be).
+void check_ids(std::span<const std::int64_t> ids, std::int64_t next_id);
 
 // Throws, before anything is allocated, when `count` more particles (on top of those there
 // are) would not fit in this machine's memory at 300 bytes each in single precision and 400 in

@@ -35,7 +35,7 @@ void RunLoop::prepare() {
   sim_.collect_boundaries();
   sim_.warn_unmatched_states();
   for (const auto& f : sim_.fixes_) f->prepare_scene(sim_);
-  if (sim_.global_count() == 0) throw Error("run: no particle is left: every one was created inside a solid");
+  if (sim_.particle_mass() == 0) throw Error("run: no particle is left: every one was created inside a solid");
 
   check_pipeline();
   distribute();
@@ -46,6 +46,7 @@ void RunLoop::prepare() {
   if (sim_.step_ == 0 &&
       std::any_of(sim_.fixes_.begin(), sim_.fixes_.end(), [](const auto& f) { return f->needs_neighbors(); }))
     separate_coincident(sim_);
+  sim_.run_uniform_mass_ = uniform_mass(P.mass(), P.size(), P.distributed());
   // Every fix declares the fields it uses; the outputs start last, after the fields no fix
   // declared are freed and the new particles' fields are set, so that they see what this run has.
   P.begin_declarations();
@@ -67,7 +68,7 @@ void RunLoop::prepare() {
   // The computes against the scene the run has: a domain set after them, solids' maps built.
   for (const auto& c : sim_.computes_) c->check_scene(sim_);
   const double h = sim_.h_;
-  full_neighborhood_ = 4.0 / 3.0 * M_PI * h * h * h * sim_.rest_density_ / P.mean_mass();
+  full_neighborhood_ = 4.0 / 3.0 * M_PI * h * h * h * sim_.rest_density_ / sim_.particle_mass();
 
   iterations_ = 1;
   neighbors_ = false;
@@ -139,7 +140,8 @@ void RunLoop::distribute() {
 void RunLoop::run(std::int64_t steps, double until) {
   const double start = now();
   // What is missing first, then what is absurd.
-  if (sim_.global_count() == 0)
+  // (A scene with none may run when it had some, or a fix creates them: Simulation::particle_mass.)
+  if (sim_.particle_mass() == 0)
     throw Error("run: there are no particles (create them with pbf.lattice or pbf.read_scene)");
   if (sim_.h_ <= 0) throw Error("run: the kernel radius h is not set (pbf.kernel_radius)");
   if (sim_.dt_ <= 0) throw Error("run: the time step is not set (pbf.timestep)");
@@ -147,13 +149,18 @@ void RunLoop::run(std::int64_t steps, double until) {
   plan(steps, until);
   check_start_state();
   prepare();
-  // From here on the scene's constants stay as every fix's init left them (summed_density).
+  // From here on the scene's constants stay as every fix's init left them (summed_density),
+  // and the particle set changes only at the exchange stage.
   auto& P = sim_.particles_;
-  sim_.run_uniform_mass_ = uniform_mass(P.mass(), P.size(), P.distributed());
   struct Running {
-    bool& flag;
-    ~Running() { flag = false; }
-  } running{sim_.running_ = true};
+    Simulation& sim;
+    ~Running() {
+      sim.running_ = false;
+      sim.particles_.freeze(false);
+    }
+  } running{sim_};
+  sim_.running_ = true;
+  P.freeze(true);
   sim_.decomposition_.reset_seconds();
   sim_.thermo_.start_run(sim_);
   const std::int64_t first = sim_.step_, last = first + steps;
@@ -221,6 +228,7 @@ void RunLoop::step() {
   auto& P = sim_.particles_;
   const std::int64_t number = sim_.step_ + 1;  // the step being computed
   sim_.wrap_periodic();  // particles that crossed a periodic face come back by a period
+  if (!hooks_[static_cast<int>(Stage::exchange)].empty()) exchange();
   if (P.distributed()) {  // particles that left this rank's box go to their owners
     const double t0 = now();
     sim_.decomposition_.migrate(P, sim_.geometry_);
@@ -278,6 +286,21 @@ void RunLoop::step() {
   timing_.add(row_thermo_, now() - t1);
 }
 
+// Fixes add and remove particles; the new ones get their fields from the fixes that declare
+// them, and what a run keeps of the particle set (the common mass) follows it.
+void RunLoop::exchange() {
+  auto& P = sim_.particles_;
+  const std::size_t count = P.global_size();
+  const std::int64_t next_id = P.next_id();
+  P.freeze(false);
+  run_stage(Stage::exchange);
+  P.freeze(true);
+  if (P.next_id() == next_id && P.global_size() == count) return;
+  if (P.next_id() != next_id) init_new_particles();
+  sim_.run_uniform_mass_ = uniform_mass(P.mass(), P.size(), P.distributed());
+  sim_.positions_changed();
+}
+
 void RunLoop::run_stage(Stage stage, int iteration) {
   for (const Hook& hook : hooks_[static_cast<int>(stage)]) {
     if (sim_.check_ghosts_) sim_.poison_scratch();  // undefined when a hook starts: NaN
@@ -297,6 +320,7 @@ void RunLoop::run_stage(Stage stage, int iteration) {
 void RunLoop::call(Stage stage, Fix& fix, int iteration) {
   try {
     switch (stage) {
+      case Stage::exchange: fix.exchange(sim_); break;
       case Stage::external_forces: fix.external_forces(sim_); break;
       case Stage::predict: fix.predict(sim_); break;
       case Stage::neighbors: break;

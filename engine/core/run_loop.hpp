@@ -35,6 +35,7 @@ class RunLoop {
   void distribute();
   void init_new_particles();
   void step();
+  void exchange();
   void run_stage(Stage stage, int iteration = 0);
   void call(Stage stage, Fix& fix, int iteration);
   void check_finite(Stage stage, const Fix& fix) const;

@@ -204,6 +204,13 @@ double Simulation::max_kinematic_viscosity() const {
   return nu;
 }
 
+double Simulation::particle_mass() const {
+  if (global_count() > 0) return last_mean_mass_ = particles_.mean_mass();
+  for (const auto& f : fixes_)
+    if (f->created_mass() > 0) return f->created_mass();
+  return last_mean_mass_;
+}
+
 Fix* Simulation::find_fix(const std::string& id) const {
   for (const auto& f : fixes_)
     if (f->id() == id) return f.get();

@@ -120,8 +120,14 @@ class Simulation {
   const Fix* integrator() const;
   // the fastest signal any fix's physics carries (m/s; 0: none), for time-step control;
   double max_signal_speed() const;
-  // the largest kinematic viscosity a fix applies explicitly (m^2/s; 0: none), likewise.
+  // the largest kinematic viscosity a fix applies explicitly (m^2/s; 0: none), likewise;
   double max_kinematic_viscosity() const;
+  // the mass of a particle of the scene, which sets the lattice spacing its constants depend
+  // on (walls' density, PBF's S0): the particles' mean mass; with none (a basin an emitter
+  // fills, a tank drained), the mass a fix creates particles with, else the mean mass the
+  // scene last had; 0 when there is none of these (a run is refused then). Collective in a
+  // distributed run.
+  double particle_mass() const;
 
   // Runs `steps` steps; may be called again, with the pipeline changed in between.
   void run(std::int64_t steps);
@@ -129,6 +135,11 @@ class Simulation {
   // changes as the run goes (fix cfl), the number of steps is not known in advance.
   void run_until(double time);
   const TimingTable& last_timing() const { return timing_; }
+  // Whether a run is under way (the fixes' hooks are running).
+  bool running() const { return running_; }
+  // Within a run: every particle's mass when all are equal, else 0 (the pair sums then need
+  // not gather masses). Kept up to date when the exchange stage changes the particles.
+  real common_mass() const { return run_uniform_mass_; }
   // The files the runs have written (the command line lists them at the end).
   OutputLedger& outputs() { return outputs_; }
   const OutputLedger& outputs() const { return outputs_; }
@@ -210,6 +221,7 @@ class Simulation {
   Domain domain_;
   bool domain_set_ = false;
   double h_ = 0, dt_ = 0, rest_density_ = 1000;
+  mutable double last_mean_mass_ = 0;  // the mean mass when the scene last had particles
   Kernels kernels_{1.0};
   int reorder_every_ = 20;
   bool check_every_hook_ = false;

@@ -1,21 +1,32 @@
 #pragma once
-// Blocks of ids: rank r of R writes the particles with ids [r N / R, (r + 1) N / R) of a file in
-// id order (text frames, restarts), whichever rank owns them.
+// Blocks of ids for the files every rank of a distributed run writes together in id order
+// (text frames, restarts): rank r writes the particles whose ids lie in [begin(r), begin(r+1)),
+// whichever rank owns them. Ids have gaps (removed particles' ids are never given again), so
+// the bounds are not r N / R: a histogram of the ids present, 64 bins a rank over
+// 0..next_id-1, summed over the ranks, puts the bounds on bin edges that split the particles
+// about evenly. Where the bounds fall only decides which rank writes which bytes of the file,
+// never the bytes.
 #include <cstdint>
+#include <span>
+#include <vector>
 
 namespace pbf {
 
-inline std::uint64_t id_block_begin(std::uint64_t total, int rank, int ranks) {
-  return static_cast<std::uint64_t>(static_cast<unsigned __int128>(total) * static_cast<unsigned>(rank) /
-                                    static_cast<unsigned>(ranks));
-}
+class IdBlocks {
+ public:
+  // From every rank's ids (each id on one rank) and the next id to give. Collective.
+  IdBlocks(std::span<const std::int64_t> ids, std::int64_t next_id);
+  int ranks() const { return static_cast<int>(counts_.size()); }
+  // The rank whose block holds `id`.
+  int rank_of(std::int64_t id) const;
+  // The particles in rank r's block, and in the blocks before it (every rank knows them all).
+  std::uint64_t count(int r) const { return counts_[static_cast<std::size_t>(r)]; }
+  std::uint64_t before(int r) const;
+  std::uint64_t total() const { return before(ranks()); }
 
-// The rank whose block holds `id` (id < total).
-inline int id_block_of(std::uint64_t id, std::uint64_t total, int ranks) {
-  int r = static_cast<int>(static_cast<unsigned __int128>(id) * static_cast<unsigned>(ranks) / total);
-  while (r + 1 < ranks && id_block_begin(total, r + 1, ranks) <= id) ++r;
-  while (r > 0 && id_block_begin(total, r, ranks) > id) --r;
-  return r;
-}
+ private:
+  std::vector<std::int64_t> bounds_;   // ranks + 1: block r is [bounds_[r], bounds_[r + 1])
+  std::vector<std::uint64_t> counts_;  // one per rank
+};
 
 }  // namespace pbf

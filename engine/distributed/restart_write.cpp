@@ -1,10 +1,11 @@
 // A restart written by every rank of a distributed run together, in the one-process format
 // (engine/io/restart.hpp) with the particles in id order, so that any number of ranks, or one
 // process, reads it. No rank holds more than its share: each particle's saved values go to the
-// rank that writes its block of ids ([r N / R, (r + 1) N / R) on rank r), and each rank writes
+// rank that writes its block of ids (engine/distributed/id_blocks.hpp), and each rank writes
 // its block of every array at its offset (MPI-IO). Rank 0 writes the header, the scene, the
 // fields' names and the fixes' states (the same on every rank). The CRC-32 of the payload is
 // combined on rank 0 from the CRCs of every rank's pieces, in file order (zlib's crc32_combine).
+#include <algorithm>
 #include <cstring>
 #include <fmt/format.h>
 #include <omp.h>
@@ -41,9 +42,10 @@ RestartSummary write_restart_distributed(Simulation& sim, const std::string& pat
   const std::size_t record = sizeof(std::int64_t) + components * real_bytes;
 
   // Each particle's id and saved values, to the rank of its block of ids.
+  const IdBlocks blocks(std::span<const std::int64_t>(P.ids(), P.size()), P.next_id());
   std::vector<std::vector<char>> send(static_cast<std::size_t>(R));
   for (std::size_t i = 0; i < P.size(); ++i) {
-    auto& out = send[static_cast<std::size_t>(id_block_of(static_cast<std::uint64_t>(P.ids()[i]), total, R))];
+    auto& out = send[static_cast<std::size_t>(blocks.rank_of(P.ids()[i]))];
     const char* id = reinterpret_cast<const char*>(P.ids() + i);
     out.insert(out.end(), id, id + sizeof(std::int64_t));
     for (FieldId f : saved)
@@ -57,25 +59,28 @@ RestartSummary write_restart_distributed(Simulation& sim, const std::string& pat
   send.clear();
 
   // This rank's block: the ids, then each component's values, in id order.
-  const std::uint64_t first = id_block_begin(total, me, R), count = id_block_begin(total, me + 1, R) - first;
+  std::vector<const char*> records;
+  for (const auto& from : received)
+    for (std::size_t at = 0; at + record <= from.size(); at += record) records.push_back(from.data() + at);
+  const auto id_of = [](const char* rec) {
+    std::int64_t id = 0;
+    std::memcpy(&id, rec, sizeof id);
+    return id;
+  };
+  std::sort(records.begin(), records.end(), [&](const char* a, const char* b) { return id_of(a) < id_of(b); });
+  const std::uint64_t first = blocks.before(me), count = records.size();
+  if (count != blocks.count(me)) throw Error(fmt::format("{}: {} particles sent to rank {}, {} expected", path, count, me, blocks.count(me)));
   std::vector<std::vector<char>> arrays(1 + components);
   arrays[0].resize(count * sizeof(std::int64_t));
   for (std::size_t k = 1; k < arrays.size(); ++k) arrays[k].resize(count * real_bytes);
-  std::vector<char> seen(count, 0);
-  for (const auto& from : received)
-    for (std::size_t at = 0; at + record <= from.size(); at += record) {
-      std::int64_t id = 0;
-      std::memcpy(&id, from.data() + at, sizeof id);
-      const std::uint64_t slot = static_cast<std::uint64_t>(id) - first;
-      if (slot >= count || seen[slot]) throw Error(fmt::format("{}: particle id {} misplaced or held twice", path, id));
-      seen[slot] = 1;
-      std::memcpy(arrays[0].data() + slot * sizeof id, &id, sizeof id);
-      for (std::size_t k = 1; k < arrays.size(); ++k)
-        std::memcpy(arrays[k].data() + slot * real_bytes, from.data() + at + sizeof id + (k - 1) * real_bytes,
-                    real_bytes);
-    }
-  for (std::uint64_t k = 0; k < count; ++k)
-    if (!seen[k]) throw Error(fmt::format("{}: no rank holds particle id {}", path, first + k));
+  for (std::uint64_t slot = 0; slot < count; ++slot) {
+    const char* rec = records[slot];
+    if (slot > 0 && id_of(rec) == id_of(records[slot - 1]))
+      throw Error(fmt::format("{}: particle id {} held twice", path, id_of(rec)));
+    std::memcpy(arrays[0].data() + slot * sizeof(std::int64_t), rec, sizeof(std::int64_t));
+    for (std::size_t k = 1; k < arrays.size(); ++k)
+      std::memcpy(arrays[k].data() + slot * real_bytes, rec + sizeof(std::int64_t) + (k - 1) * real_bytes, real_bytes);
+  }
 
   // The file: header, scene, N, ids, each field (name, components, one array per component),
   // the fixes' states. Rank 0's pieces are the ones every rank knows alike.
@@ -137,7 +142,7 @@ RestartSummary write_restart_distributed(Simulation& sim, const std::string& pat
       }
       const std::size_t value_bytes = piece == 0 ? sizeof(std::int64_t) : real_bytes;
       for (int r = 0; r < R; ++r) {
-        const std::uint64_t length = (id_block_begin(total, r + 1, R) - id_block_begin(total, r, R)) * value_bytes;
+        const std::uint64_t length = blocks.count(r) * value_bytes;
         const auto block_crc = static_cast<uLong>(all_crcs[static_cast<std::size_t>(r) * block_crcs.size() +
                                                            static_cast<std::size_t>(piece)]);
         crc = crc32_combine64(crc, block_crc, static_cast<z_off64_t>(length));

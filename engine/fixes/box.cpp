@@ -13,6 +13,13 @@
 // miss part of their neighbourhood: the solver then packs them tighter, and the fluid sinks
 // and sticks at the walls.
 //
+// With no_slip, the walls hold the fluid at rest along them. A Laplacian viscosity
+// (sph_viscosity) does it through each face's viscous pull, Psi(d_k) (0 - v_i) along the
+// face (engine/sph/viscous_wall.hpp), summed over the faces within reach (at an edge the
+// region behind both faces counts for each); without one, a particle touching a face
+// loses its velocity along it after the velocity update (friction without end), as a
+// no-slip solid's does.
+//
 // A periodic axis of the domain has no walls: its faces are where the fluid goes on (the
 // periodic images, engine/core/periodic_images.hpp), so the box walls only the other axes.
 #include <cmath>
@@ -26,6 +33,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
+#include "engine/sph/viscous_wall.hpp"
 #include "engine/sph/wall_density.hpp"
 #include "engine/core/simulation.hpp"
 
@@ -40,6 +48,7 @@ class Box : public Fix, public DensityBoundary {
         restitution_(p.real("restitution")),
         friction_(p.real("friction")),
         wall_density_(p.boolean("wall_density")),
+        no_slip_(p.boolean("no_slip")),
         contact_spacings_(p.real("contact_distance")) {}
 
   std::vector<Stage> stages() const override {
@@ -81,7 +90,7 @@ class Box : public Fix, public DensityBoundary {
     const Domain& d = sim.domain();
     const real* x[3] = {P.x(), P.y(), P.z()};
     real* v[3] = {P.vx(), P.vy(), P.vz()};
-    const real keep = real(std::exp(-friction_ * sim.timestep()));
+    const real keep = no_slip_ && !viscous_no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
     const real e = real(restitution_);
     const bool bounce = restitution_ > 0;
     for_particles(P.size(), [&](std::size_t i) {
@@ -100,7 +109,8 @@ class Box : public Fix, public DensityBoundary {
 
   void init(Simulation& sim) override {
     if (wall_density_) prepare(sim);
-    const double spacing = lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+    viscous_no_slip_ = no_slip_ && wall_density_ && sim.max_kinematic_viscosity() > 0;
+    const double spacing = lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
     contact_ = contact_spacings_ * spacing;
     const Domain& d = sim.domain();
     for (int a = 0; a < 3; ++a)
@@ -109,7 +119,23 @@ class Box : public Fix, public DensityBoundary {
                                 "along {})", contact_spacings_, contact_, d.extent(a), "xyz"[a]));
   }
 
-  void prepare(const Simulation& sim) override { wall_.prepare(sim); }
+  void prepare(const Simulation& sim) override {
+    wall_.prepare(sim);
+    if (no_slip_) viscous_.prepare(sim);
+  }
+
+  bool no_slip() const override { return no_slip_; }
+
+  void add_no_slip(const Simulation& sim, const real q[3], std::size_t, const real v[3], real pull[3]) const override {
+    const Domain& d = sim.domain();
+    for (int a = 0; a < 3; ++a) {
+      if (d.periodic[a]) continue;  // no walls across a periodic axis
+      const real share = viscous_.share(q[a] - real(d.lo[a])) + viscous_.share(real(d.hi[a]) - q[a]);
+      if (share == 0) continue;
+      pull[(a + 1) % 3] -= share * v[(a + 1) % 3];  // along the faces: the walls are at rest
+      pull[(a + 2) % 3] -= share * v[(a + 2) % 3];
+    }
+  }
 
   void add_density(const Simulation& sim, real x, real y, real z, std::size_t, real& rho, real grad[3]) const override {
     const Domain& d = sim.domain();
@@ -139,8 +165,10 @@ class Box : public Fix, public DensityBoundary {
 
  private:
   HalfSpaceWall wall_;
+  NoSlipWall viscous_;
   double restitution_, friction_;
-  bool wall_density_;
+  bool wall_density_, no_slip_;
+  bool viscous_no_slip_ = false;  // this run's: a Laplacian viscosity holds the no-slip walls
   double contact_spacings_, contact_ = 0;  // in spacings, and in metres for this run
   std::vector<real> incoming_[3];
 };
@@ -150,12 +178,15 @@ class Box : public Fix, public DensityBoundary {
 void register_box(StyleRegistry& r) {
   r.add({"box",
          StyleKind::fix,
-         "walls at the domain faces: projection, restitution, friction, wall density",
+         "walls at the domain faces: projection, restitution, friction or no slip, wall density",
          {ParamSpec{"restitution", ParamType::Real, 0.0, "", "normal velocity kept after an impact, reversed"}.within(0, 1),
           ParamSpec{"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at a wall, exp(-rate dt)"}
               .at_least(0),
           {"wall_density", ParamType::Bool, true, "",
            "count each wall as fluid at rest density behind it in the density sum"},
+          {"no_slip", ParamType::Bool, false, "",
+           "hold the fluid at rest along the walls: through a Laplacian sph_viscosity's wall term (with "
+           "wall_density), else by stopping a touching particle's motion along the wall (overrides friction)"},
           ParamSpec{"contact_distance", ParamType::Real, 0.5, "spacing",
                     "closest a particle's centre comes to a face, in particle spacings (0.5: its radius, which "
                     "keeps a column at rest still, docs/physics.md)"}

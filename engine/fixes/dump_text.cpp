@@ -42,14 +42,15 @@ class DumpText : public Dump {
       fmt::format_to(std::back_inserter(buf), "\n");
     }
     if (sim.particles().distributed()) return write_distributed(sim, path, buf);
-    // A particle field is read where it lies, through the index of each id; only derived
-    // quantities (speed, density, ...) are gathered, so that a frame of position and velocity
-    // costs no copy of the particles (memory is the limit at a million of them).
+    // Lines in id order. A particle field is read where it lies, through the memory index of
+    // each line's particle; only derived quantities (speed, density, ...) are gathered, so that
+    // a frame of position and velocity costs no copy of the particles (memory is the limit at
+    // a million of them).
     const auto& P = sim.particles();
-    const std::vector<std::uint32_t> index = P.index_of_id();
+    const std::vector<std::uint32_t> index = P.order_by_id();
     std::vector<std::vector<const real*>> columns(fields().size());
     for (std::size_t k = 0; k < fields().size(); ++k) {
-      if (fields().is_id(k)) continue;  // the id of line i is i
+      if (fields().is_id(k)) continue;
       if (const auto f = P.find(fields().names()[k])) {
         for (int c = 0; c < fields().components(k); ++c) columns[k].push_back(P.data(*f, c));
       } else {
@@ -76,7 +77,7 @@ class DumpText : public Dump {
           for (std::size_t k = 0; k < fields().size(); ++k) {
             const int nc = fields().components(k);
             for (int c = 0; c < nc; ++c) {
-              if (fields().is_id(k)) fmt::format_to(out, "{}{}", separator, i);
+              if (fields().is_id(k)) fmt::format_to(out, "{}{}", separator, P.ids()[index[i]]);
               else if (!columns[k].empty()) fmt::format_to(out, "{}{}", separator, columns[k][c][index[i]]);
               else fmt::format_to(out, "{}{}", separator, values[k][i * nc + c]);
               separator = " ";
@@ -117,7 +118,7 @@ class DumpText : public Dump {
       fmt::format_to(out, "\n");
       ends[i] = text.size();
     }
-    write_lines_by_id(path, first, total, std::span<const std::int64_t>(P.ids(), n),
+    write_lines_by_id(path, first, P.next_id(), std::span<const std::int64_t>(P.ids(), n),
                       std::span<const char>(text.data(), text.size()), ends);
   }
 };

@@ -115,12 +115,11 @@ class PositionBasedFluid : public Fix {
     if (keep_pressure_) {
       pressure_ = P.declare(
           {"pressure", 1, "pressure from the constraint, -kappa rho0/dt^2 sum of lambda over the step (Pa)", false});
-      kappa_ = gradient_norm(P.mean_mass(), sim.kernels(), sim.rest_density());
-      first_wall_ = lattice_wall_density(P.mean_mass(), sim.kernels(), sim.rest_density());
+      kappa_ = gradient_norm(sim.particle_mass(), sim.kernels(), sim.rest_density());
+      first_wall_ = lattice_wall_density(sim.particle_mass(), sim.kernels(), sim.rest_density());
       rest_density_ = real(sim.rest_density());
     }
-    uniform_mass_ = uniform_mass(P.mass(), P.size(), P.distributed());
-    S0_ = lattice_gradient_sum(P.mean_mass(), sim.kernels(), sim.rest_density());
+    S0_ = lattice_gradient_sum(sim.particle_mass(), sim.kernels(), sim.rest_density());
     scorr_w_ = sim.kernels().W(real(dq_ * dq_ * sim.kernel_radius() * sim.kernel_radius()));
   }
 
@@ -174,7 +173,7 @@ class PositionBasedFluid : public Fix {
     wall_gradients(sim, walls.size());
     sim.update_ghost_positions();  // moved by the last iteration's corrections and walls
     const real *x = P.x(), *y = P.y(), *z = P.z();
-    const PairInput pairs{grid, x, y, z, m, uniform_mass_, K, n};
+    const PairInput pairs{grid, x, y, z, m, sim.common_mass(), K, n};
     ThreadSums<1> compression;  // of max(rho/rho0 - 1, 0), for the report
     most_.assign(static_cast<std::size_t>(omp_get_max_threads()), 0);
     for_blocks(n, [&](std::size_t begin, std::size_t end) {
@@ -368,7 +367,6 @@ class PositionBasedFluid : public Fix {
   bool pressure_wanted_, keep_pressure_ = false;
   double S0_ = 1, kappa_ = 1, first_wall_ = 1;
   real scorr_w_ = 1;
-  real uniform_mass_ = 0;  // every particle's mass, when all are equal (the pair sums need not gather it)
   FieldId lambda_ = 0, pressure_ = 0;
   std::vector<real> prev_[3];  // positions at the start of the step (within a step only)
   std::vector<real> most_;       // each thread's largest compression in an iteration

@@ -11,7 +11,11 @@
 //    wall is thick stops at the near side instead of being pushed out of the far one;
 //  - after the velocity update, a particle on the wall loses its velocity into the wall and,
 //    with friction, its tangential velocity at a rate per second (exp(-rate dt) per step),
-//    or all of it with no_slip.
+//    or all of it with no_slip;
+//  - no_slip under a Laplacian viscosity (sph_viscosity): instead of the touching particles'
+//    velocity, the viscosity's wall term holds the fluid near the wall (to the wall's velocity),
+//    the wall's fluid moving as Morris's boundary particles (engine/sph/viscous_wall.hpp) at
+//    the flat wall's distance d_eff of the map's fraction; the solid takes its drag in its load.
 // Particles created inside the wall, or nearer to it than the contact distance, are left out
 // at the start of the first run, with their count in the log (those within a tenth of a
 // spacing of it are moved out to it instead); at later runs, those inside it.
@@ -49,19 +53,41 @@ void SolidFix::add_density(const Simulation& sim, real x, real y, real z, std::s
                            real grad[3]) const {
   real f, g[3];
   const real q[3] = {x, y, z};
-  // Within a step, a particle still beyond the kernel's reach of a solid at rest (its start
-  // distance less what it has moved since, and two cells for the spline's sharpening) sees
-  // no wall: the map would answer f = 0.
-  if (particle != kNoParticle && !motion_ && started_step_ == sim.step() && particle < start_distance_.size()) {
-    const real moved = std::sqrt((x - start_[0][particle]) * (x - start_[0][particle]) +
-                                 (y - start_[1][particle]) * (y - start_[1][particle]) +
-                                 (z - start_[2][particle]) * (z - start_[2][particle]));
-    if (far_from_wall(start_distance_[particle], moved, real(map_.far_distance() + 2 * cell_size()))) return;
-  }
+  if (out_of_reach(sim, particle, q)) return;
   if (fraction_at(now_, q, f, g) == SolidMap::Where::fluid) return;
   const real rho0 = real(sim.rest_density());
   rho += rho0 * f;
   for (int a = 0; a < 3; ++a) grad[a] += rho0 * g[a];
+}
+
+// Within a step, a particle still beyond the kernel's reach of a solid at rest (its start
+// distance less what it has moved since, and two cells for the spline's sharpening) sees no
+// wall: the map would answer "far in the fluid".
+bool SolidFix::out_of_reach(const Simulation& sim, std::size_t particle, const real q[3]) const {
+  if (particle == kNoParticle || motion_ || started_step_ != sim.step() || particle >= start_distance_.size())
+    return false;
+  const real moved = std::sqrt((q[0] - start_[0][particle]) * (q[0] - start_[0][particle]) +
+                               (q[1] - start_[1][particle]) * (q[1] - start_[1][particle]) +
+                               (q[2] - start_[2][particle]) * (q[2] - start_[2][particle]));
+  return far_from_wall(start_distance_[particle], moved, real(map_.far_distance() + 2 * cell_size()));
+}
+
+// The no-slip wall's viscous pull (engine/sph/viscous_wall.hpp) at the flat wall's distance
+// that gives the map's fraction, d_eff, along the normal grad d_eff: exact on a flat wall,
+// and the wall's share of the neighbourhood kept at edges, corners and curves.
+void SolidFix::add_no_slip(const Simulation& sim, const real q[3], std::size_t particle, const real v[3],
+                           real pull[3]) const {
+  real d, g[3];
+  if (out_of_reach(sim, particle, q)) return;
+  if (map_at(&SolidMap::effective_distance, now_, q, d, g) != SolidMap::Where::near) return;
+  const real share = viscous_.share(d), len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (share == 0 || len == 0) return;
+  const real nrm[3] = {g[0] / len, g[1] / len, g[2] / len};
+  real wall[3] = {0, 0, 0};
+  wall_velocity(sim, q, wall);
+  const real rel[3] = {wall[0] - v[0], wall[1] - v[1], wall[2] - v[2]};
+  const real normal = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
+  for (int a = 0; a < 3; ++a) pull[a] += share * (rel[a] - normal * nrm[a]);
 }
 
 // The wall's velocity at q over the step: where that point of the wall was at the step's
@@ -146,7 +172,8 @@ void SolidFix::velocity_update(Simulation& sim) {
   auto& P = sim.particles();
   const real *x = P.x(), *y = P.y(), *z = P.z();
   real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
-  const real keep = no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
+  // (A no-slip wall that a Laplacian viscosity holds leaves the tangential velocity to it.)
+  const real keep = no_slip_ && !viscous_no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
   const real* m = P.mass();
   const real touching = real(contact_tolerance());
   for_particles(P.size(), [&](std::size_t i) {

@@ -14,6 +14,7 @@
 #include "engine/geometry/solid_map.hpp"
 #include "engine/geometry/wall_contact.hpp"
 #include "engine/sph/density_boundary.hpp"
+#include "engine/sph/viscous_wall.hpp"
 #include "engine/sph/wall_density.hpp"
 
 namespace pbf {
@@ -52,6 +53,9 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   void add_density(const Simulation& sim, real x, real y, real z, std::size_t particle, real& rho,
                    real grad[3]) const override;
   bool wall_velocity(const Simulation& sim, const real q[3], real v[3]) const override;
+  bool no_slip() const override { return no_slip_; }
+  void add_no_slip(const Simulation& sim, const real q[3], std::size_t particle, const real v[3],
+                   real pull[3]) const override;
   void external_forces(Simulation& sim) override;
   void constraint(Simulation& sim, int) override;
   void velocity_update(Simulation& sim) override;
@@ -70,6 +74,8 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   // Where projection puts particles, for keep_out (engine/geometry/wall_contact.hpp).
   ContactDistances contact_distances() const { return {real(hair()), real(gap()), real(0.25 * cell_size())}; }
 
+  // Whether the particle (memory index), within a step, is still beyond the kernel's reach.
+  bool out_of_reach(const Simulation& sim, std::size_t particle, const real q[3]) const;
   RigidTransform pose_at(double t) const { return motion_ ? transform_of(motion_->at(t), pivot_) : RigidTransform{}; }
   void move_to(double t, bool within_step = false);
   void check_thickness(double spacing) const;
@@ -92,6 +98,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   bool fluid_inside_;
   double friction_;
   bool no_slip_, wall_density_;
+  bool viscous_no_slip_ = false;  // this run's: a Laplacian viscosity holds the no-slip wall
   MotionPtr motion_;  // nullptr: at rest
   Point pivot_{};
   Pose pose_;                           // where the motion has it now
@@ -101,6 +108,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   std::uint64_t surface_version_ = 0;
 
   HalfSpaceWall wall_;
+  NoSlipWall viscous_;  // prepared with no_slip only
   SolidMap map_;
   bool built_ = false;
   double built_for_[7] = {0, 0, 0, 0, 0, 0, 0};

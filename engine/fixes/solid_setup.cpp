@@ -121,13 +121,13 @@ void SolidFix::prepare_scene(Simulation& sim) {
       ++moved;
     }
   }
-  // (In a distributed run the ids are renumbered across the ranks, and the counts summed.)
+  // (The others keep their ids; in a distributed run the counts are summed.)
   std::size_t removed = P.remove(drop);
   if (P.distributed()) {
     removed = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(removed)));
     moved = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(moved)));
   }
-  if (sim.global_count() == 0)
+  if (removed > 0 && sim.global_count() == 0)
     throw Error(fmt::format("solid '{}' ({} it) leaves no particle: every one was created inside the wall", id(),
                             fluid_inside_ ? "fluid inside" : "fluid outside"));
   if (removed > 0)
@@ -141,6 +141,7 @@ void SolidFix::prepare_scene(Simulation& sim) {
 void SolidFix::init(Simulation& sim) {
   move_to(sim.time());
   prepare(sim);
+  viscous_no_slip_ = no_slip_ && wall_density_ && sim.max_kinematic_viscosity() > 0;
   if (saved_pose_ && motion_ && !(*saved_pose_ == pose_))
     spdlog::warn("solid '{}': its motion puts it elsewhere at t = {} than the restart saved it: the continued run "
                  "differs from the saved one", id(), sim.time());
@@ -151,6 +152,7 @@ void SolidFix::init(Simulation& sim) {
 // it within a step too: the pose stays the step's.)
 void SolidFix::prepare(const Simulation& sim) {
   const bool changed = wall_.prepare(sim);
+  if (no_slip_) viscous_.prepare(sim);
   const Domain& dom = sim.domain();
   const double key[7] = {sim.kernel_radius(), dom.lo[0], dom.lo[1], dom.lo[2], dom.hi[0], dom.hi[1], dom.hi[2]};
   if (!changed && built_ && std::equal(key, key + 7, built_for_)) return;
@@ -158,7 +160,7 @@ void SolidFix::prepare(const Simulation& sim) {
   built_ = true;
   const double start = omp_get_wtime();
   const double h = sim.kernel_radius();
-  spacing_ = lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+  spacing_ = lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
   const double cell = cell_size();
   const double reach = SolidMap::required_reach(h, cell, wall_.delta());
   const std::unique_ptr<Shape> shape = shape_.make_shape(dom, cell, reach);
@@ -248,7 +250,9 @@ void register_solid(StyleRegistry& r) {
               .magnitude_at_most(1e6),
           ParamSpec{"friction", ParamType::Real, 0.0, "1/s", "tangential velocity decay rate at the wall, exp(-rate dt)"}
               .at_least(0),
-          {"no_slip", ParamType::Bool, false, "", "stop all tangential motion at the wall (overrides friction)"},
+          {"no_slip", ParamType::Bool, false, "",
+           "hold the fluid at the wall's velocity along it: through a Laplacian sph_viscosity's wall term (with "
+           "wall_density), else by stopping a touching particle's tangential motion (overrides friction)"},
           {"wall_density", ParamType::Bool, true, "", "count the wall as fluid at rest density behind its surface"},
           ParamSpec{"contact_distance", ParamType::Real, 0.5, "spacing",
                     "closest a particle's centre comes to the surface, in particle spacings (0.5: its radius, "

@@ -6,9 +6,16 @@
 //   laplacian (Morris et al. 1997), kinematic viscosity nu, in the form symmetric in i and j
 //   (so momentum is conserved; 2 nu m_j / rho_j when the densities are equal):
 //       a_i += sum_j nu m_j (1/rho_i + 1/rho_j) v_ij (x_ij . gradW_ij) / (|x_ij|^2 + 0.01 h^2)
+//     and, from each no-slip wall (a box or solid with no_slip = true and its wall density on),
+//       a_i += nu (1 + rho0 / rho_i) Psi(d) (v_wall - v_i)_t,
+//     the same term over the wall's fluid moving as Morris's boundary particles do (the
+//     velocity continued linearly through v_wall at the surface; engine/sph/viscous_wall.hpp
+//     derives Psi, the tangential part _t and the wall's delta). A solid takes the opposite
+//     momentum, m a dt, in its load. A scene without no-slip walls pays nothing for it.
 // Wendland C2 gradients, as the pressure force.
 #include <algorithm>
 #include <fmt/format.h>
+#include <vector>
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
@@ -38,6 +45,10 @@ class SphViscosity : public Fix {
     accel_ = sim.particles().declare(kAccelerationField);
     if (artificial_ && sound_speed(sim) == 0)
       throw Error("the artificial viscosity needs a sound speed: set 'sound_speed' or add a wcsph fix");
+    no_slip_walls_.clear();
+    if (kinematic_viscosity() > 0)
+      for (DensityBoundary* w : sim.density_boundaries())
+        if (w->no_slip()) no_slip_walls_.push_back(w);
   }
 
   void forces(Simulation& sim) override {
@@ -52,6 +63,7 @@ class SphViscosity : public Fix {
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * sound_speed(sim)) * h, nu = real(nu_);
     const bool artificial = artificial_;
+    const real rho0 = real(sim.rest_density()), dt = real(sim.timestep());
     for_particles(n, [&](std::size_t i) {
       real a[3] = {0, 0, 0};
       grid.for_each_neighbor(i, x, y, z, [&](std::uint32_t j, real dx, real dy, real dz, real r2) {
@@ -69,6 +81,16 @@ class SphViscosity : public Fix {
           a[0] += s * ux, a[1] += s * uy, a[2] += s * uz;
         }
       });
+      for (DensityBoundary* w : no_slip_walls_) {
+        const real q[3] = {x[i], y[i], z[i]}, v[3] = {vx[i], vy[i], vz[i]};
+        real pull[3] = {0, 0, 0};
+        w->add_no_slip(sim, q, i, v, pull);
+        if (pull[0] == 0 && pull[1] == 0 && pull[2] == 0) continue;
+        const real c = nu * (1 + rho0 / rho[i]), mdt = m[i] * dt;
+        const real push[3] = {c * pull[0] * mdt, c * pull[1] * mdt, c * pull[2] * mdt};
+        a[0] += c * pull[0], a[1] += c * pull[1], a[2] += c * pull[2];
+        w->record_push(i, push);
+      }
       ax[i] += a[0];
       ay[i] += a[1];
       az[i] += a[2];
@@ -85,6 +107,7 @@ class SphViscosity : public Fix {
   bool artificial_;
   double alpha_, nu_, c0_;
   FieldId accel_ = 0;
+  std::vector<DensityBoundary*> no_slip_walls_;  // this run's, for the Laplacian form
 };
 
 }  // namespace

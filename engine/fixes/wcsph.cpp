@@ -43,10 +43,13 @@ namespace {
 // the Mach number stays under 0.1 and the density varies by about 1% (Monaghan 1994).
 double default_sound_speed(const Simulation& sim, double gravity) {
   const auto& P = sim.particles();
+  if (sim.global_count() == 0)
+    throw Error("parameter 'sound_speed': the default, 10 sqrt(2 g H), measures the fluid's height H, and there is "
+                "no fluid yet: give the sound speed");
   double lo = INFINITY, hi = -INFINITY;
   for (std::size_t i = 0; i < P.size(); ++i) lo = std::min(lo, double(P.z()[i])), hi = std::max(hi, double(P.z()[i]));
   if (P.distributed()) lo = comm::min(lo), hi = comm::max(hi);  // every rank's
-  const double height = hi - lo + lattice_spacing(P.mean_mass(), sim.kernels(), sim.rest_density());
+  const double height = hi - lo + lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
   return 10 * std::sqrt(2 * std::fabs(gravity) * height);
 }
 
@@ -94,6 +97,8 @@ class Wcsph : public Fix {
   // be a vacuum, the pressure force pulling them apart: NaN within a step).
   void init_new_particles(Simulation& sim, std::span<const std::uint32_t> fresh) override {
     if (filled_) return;  // init just set every particle's
+    // Within a run the summed density and the pressure are computed before they are read.
+    if (sim.running() && density_ == "summation") return;
     start_density(sim, fresh, false);
     auto& P = sim.particles();
     pressure_from_density(sim, P.data(rho_), P.data(pressure_));

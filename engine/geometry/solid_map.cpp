@@ -421,4 +421,13 @@ SolidMap::Where SolidMap::fraction(real x, real y, real z, real& f, real grad[3]
   return Where::near;
 }
 
+SolidMap::Where SolidMap::effective_distance(real x, real y, real z, real& d_eff, real grad[3]) const {
+  int cell[3];
+  real t[3];
+  const std::int32_t brick = brick_at(x, y, z, cell, t);
+  if (brick < 0) return brick == kFluid ? Where::fluid : Where::wall;
+  spline<true>(&nodes_[static_cast<std::size_t>(brick) * 2 * kPadded + kPadded], cell, t, d_eff, grad);
+  return Where::near;
+}
+
 }  // namespace pbf

@@ -63,6 +63,9 @@ class SolidMap {
   Where distance(real x, real y, real z, real& d, real grad[3]) const;
   // The wall fraction f with its gradient (f = 0 far in the fluid).
   Where fraction(real x, real y, real z, real& f, real grad[3]) const;
+  // d_eff, the distance at which a flat wall fills the fraction f, with its gradient (about
+  // the unit normal into the fluid); left alone far in the fluid and deep in the wall.
+  Where effective_distance(real x, real y, real z, real& d_eff, real grad[3]) const;
 
   // A distance every point answered as Where::fluid is at least (h + |delta|).
   double far_distance() const { return far_; }

@@ -49,6 +49,10 @@ void put_restart_scene(ByteWriter& w, const Simulation& sim) {
   w.put(clock.step);
   w.put(clock.step_base);
   w.put(clock.time_base);
+  std::uint32_t periodic = 0;
+  for (int a = 0; a < 3; ++a) periodic |= d.periodic[a] ? 1u << a : 0u;
+  w.put(periodic);
+  w.put(sim.particles().next_id());
 }
 
 std::vector<FieldId> restart_fields(const Particles& P) {

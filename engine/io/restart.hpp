@@ -23,7 +23,8 @@ namespace pbf {
 
 class Simulation;
 
-constexpr std::uint32_t kRestartVersion = 1;
+// The version written; version 1 (no periodic axes, ids 0..N-1) still reads.
+constexpr std::uint32_t kRestartVersion = 2;
 
 struct RestartSummary {
   std::int64_t step = 0;

@@ -152,22 +152,24 @@ void check_clock(const Clock& clock, double dt, const std::string& what) {
   if (!std::isfinite(time)) damaged(fmt::format("the time, {}, is not finite", time));
 }
 
-// The 32-byte header; returns the payload's CRC and size and the bytes of a real.
-void check_header(FileReader& r, std::uint32_t& crc, std::uint64_t& size, std::uint32_t& real_bytes) {
+// The 32-byte header; returns the payload's CRC and size, the bytes of a real and the version.
+void check_header(FileReader& r, std::uint32_t& crc, std::uint64_t& size, std::uint32_t& real_bytes,
+                  std::uint32_t& version) {
   const std::string& what = r.what();
   if (r.size() < kHeaderBytes) throw Error(fmt::format("{}: {} bytes, too short to be a restart file", what, r.size()));
   unsigned char magic[8];
   r.get_into(magic, 8);
   if (std::memcmp(magic, kMagic, 8) != 0) throw Error(what + ": not a pbfengine restart file");
-  const auto version = r.get<std::uint32_t>(), order = r.get<std::uint32_t>();
+  version = r.get<std::uint32_t>();
+  const auto order = r.get<std::uint32_t>();
   real_bytes = r.get<std::uint32_t>();
   crc = r.get<std::uint32_t>();
   size = r.get<std::uint64_t>();
   if (order == kSwappedByteOrderMark)
     throw Error(what + ": written on a machine of the other byte order; restarts are not portable across it");
   if (order != kByteOrderMark) throw Error(what + ": the header is damaged (bad byte-order mark)");
-  if (version != kRestartVersion)
-    throw Error(fmt::format("{}: restart format version {}; this pbfengine reads version {}", what, version,
+  if (version < 1 || version > kRestartVersion)
+    throw Error(fmt::format("{}: restart format version {}; this pbfengine reads versions 1 to {}", what, version,
                             kRestartVersion));
   if (real_bytes != 4 && real_bytes != 8)
     throw Error(fmt::format("{}: the header is damaged (a real of {} bytes is no precision pbfengine writes: 4 or 8 "
@@ -208,33 +210,38 @@ void get_values(FileReader& r, real* out, std::uint64_t n, Particles::Share shar
   }
 }
 
-// The ids of all ranks' shares together must be 0..n-1, each once (Particles::reset checks one
-// process's). Within a share: in range and distinct; across the shares, the sums of the ids and
-// of their squares (modulo 2^64) must be a permutation's (one rank's damaged id changes them).
-void check_ids(const std::vector<std::int64_t>& ids, std::uint64_t n, const std::string& what) {
-  std::vector<std::int64_t> sorted = ids;
-  std::sort(sorted.begin(), sorted.end());
-  for (std::size_t k = 0; k < sorted.size(); ++k) {
-    if (sorted[k] < 0 || static_cast<std::uint64_t>(sorted[k]) >= n || (k > 0 && sorted[k] == sorted[k - 1]))
-      throw Error(fmt::format("{}: particle ids must be a permutation of 0..{}; found {}{}", what, n - 1, sorted[k],
-                              k > 0 && sorted[k] == sorted[k - 1] ? " twice" : ""));
+// The ids of all ranks' shares together must be distinct and in 0..next_id-1 (ids of removed
+// particles are gaps). Each rank checks its share, then sends each id to the rank of its block
+// of 0..next_id-1, which checks that no two ranks sent the same one.
+void check_shared_ids(const std::vector<std::int64_t>& ids, std::int64_t next_id, const std::string& what) {
+  try {
+    check_ids(ids, next_id);
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", what, e.what()));
   }
-  std::uint64_t sums[2] = {0, 0}, expected[2];
+  const int R = comm::ranks();
+  const auto block = [&](std::int64_t id) {
+    return static_cast<std::size_t>(static_cast<unsigned __int128>(id) * static_cast<unsigned>(R) /
+                                    static_cast<unsigned __int128>(next_id));
+  };
+  std::vector<std::vector<char>> send(static_cast<std::size_t>(R)), received;
   for (std::int64_t id : ids) {
-    sums[0] += static_cast<std::uint64_t>(id);
-    sums[1] += static_cast<std::uint64_t>(id) * static_cast<std::uint64_t>(id);
+    const char* bytes = reinterpret_cast<const char*>(&id);
+    send[block(id)].insert(send[block(id)].end(), bytes, bytes + sizeof id);
   }
-  const auto big = static_cast<unsigned __int128>(n);  // the sums of 0..n-1 and of their squares, exact
-  expected[0] = static_cast<std::uint64_t>(big * (big - 1) / 2);
-  expected[1] = static_cast<std::uint64_t>((big - 1) * big * (2 * big - 1) / 6);
-  std::int64_t both[2] = {static_cast<std::int64_t>(sums[0]), static_cast<std::int64_t>(sums[1])};
-  const std::vector<std::int64_t> all = comm::gather_all(both);
-  std::uint64_t total[2] = {0, 0};
-  for (std::size_t k = 0; k < all.size(); k += 2) total[0] += static_cast<std::uint64_t>(all[k]),
-                                                   total[1] += static_cast<std::uint64_t>(all[k + 1]);
-  if (total[0] != expected[0] || total[1] != expected[1])
-    throw Error(fmt::format("{}: particle ids must be a permutation of 0..{}; some are repeated or missing", what,
-                            n - 1));
+  comm::all_to_all_bytes(send, received);
+  std::vector<std::int64_t> mine;
+  for (const auto& from : received)
+    for (std::size_t at = 0; at + sizeof(std::int64_t) <= from.size(); at += sizeof(std::int64_t)) {
+      std::int64_t id = 0;
+      std::memcpy(&id, from.data() + at, sizeof id);
+      mine.push_back(id);
+    }
+  std::sort(mine.begin(), mine.end());
+  const auto twice = std::adjacent_find(mine.begin(), mine.end());
+  const std::int64_t repeated = twice == mine.end() ? -1 : *twice;
+  const auto first = static_cast<std::int64_t>(comm::max(static_cast<double>(repeated)));
+  if (first >= 0) throw Error(fmt::format("{}: particle id {} is held twice", what, first));
 }
 
 }  // namespace
@@ -245,8 +252,8 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   FileReader r(path, what);
   std::uint32_t crc = 0;
   std::uint64_t size = 0;
-  std::uint32_t real_bytes = 0;
-  check_header(r, crc, size, real_bytes);
+  std::uint32_t real_bytes = 0, version = 0;
+  check_header(r, crc, size, real_bytes, version);
   if (payload_crc(r, size) != crc) throw Error(what + ": the data are corrupted (checksum mismatch)");
 
   // Everything is read into locals first: a file that fails half way changes nothing.
@@ -268,19 +275,29 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   clock.step_base = r.get<std::int64_t>();
   clock.time_base = r.get<double>();
   check_clock(clock, dt, what);
+  std::int64_t next_id = -1;  // (version 1: the ids were 0..n-1)
+  if (version >= 2) {
+    const auto periodic = r.get<std::uint32_t>();
+    if (periodic > 7) throw Error(fmt::format("{}: the periodic axes ({:#x}) are damaged", what, periodic));
+    for (int a = 0; a < 3; ++a) domain.periodic[a] = (periodic >> a) & 1u;
+    next_id = r.get<std::int64_t>();
+  }
 
   const auto n = r.get<std::uint64_t>();
-  if (n == 0) throw Error(what + ": it holds no particles (the engine never writes such a file)");
+  if (n == 0 && version < 2) throw Error(what + ": it holds no particles (version 1 never held none)");
+  if (version < 2) next_id = static_cast<std::int64_t>(n);
+  if (next_id < 0 || static_cast<std::uint64_t>(next_id) < n)
+    throw Error(fmt::format("{}: the next id, {}, is damaged (the file holds {} particles)", what, next_id, n));
   Particles particles;
   const Particles::Share share = particles.share(n);
   std::vector<std::int64_t> ids;
   r.get_share(ids, n, share);
   if (particles.distributed()) {
-    check_ids(ids, n, what);
-    particles.reset_share(std::move(ids), n);
+    check_shared_ids(ids, next_id, what);
+    particles.reset_share(std::move(ids), n, next_id);
   } else {
     try {
-      particles.reset(std::move(ids));
+      particles.reset(std::move(ids), next_id);
     } catch (const Error& e) {
       throw Error(fmt::format("{}: {}", what, e.what()));
     }
@@ -352,7 +369,8 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   // What a lattice or a particle file would have been refused for (a file made by hand).
   try {
     probe.check_scale();
-    check_kernel_radius(h, sampled_spacing_of_shares(particles.x(), particles.y(), particles.z(), mine,
+    if (n > 0)
+      check_kernel_radius(h, sampled_spacing_of_shares(particles.x(), particles.y(), particles.z(), mine,
                                                      particles.distributed()),
                         "the saved particles");
   } catch (const Error& e) {

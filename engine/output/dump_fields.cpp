@@ -110,16 +110,18 @@ void DumpFields::gather(Simulation& sim, std::size_t k, std::vector<real>& out) 
   const std::size_t n = P.size();
   const int nc = components_[k];
   const std::vector<const real*> columns = this->columns(sim, k);  // in memory order
-  const std::vector<std::uint32_t> index = P.index_of_id();
+  const std::vector<std::uint32_t> index = P.order_by_id();
   out.resize(n * static_cast<std::size_t>(nc));
 #pragma omp parallel for schedule(static)
-  for (std::size_t id = 0; id < n; ++id)
-    for (int c = 0; c < nc; ++c) out[id * static_cast<std::size_t>(nc) + static_cast<std::size_t>(c)] = columns[c][index[id]];
+  for (std::size_t k = 0; k < n; ++k)
+    for (int c = 0; c < nc; ++c) out[k * static_cast<std::size_t>(nc) + static_cast<std::size_t>(c)] = columns[c][index[k]];
 }
 
 void DumpFields::gather_ids(const Simulation& sim, std::vector<std::int64_t>& out) const {
-  out.resize(sim.particles().size());
-  for (std::size_t id = 0; id < out.size(); ++id) out[id] = static_cast<std::int64_t>(id);
+  const auto& P = sim.particles();
+  const std::vector<std::uint32_t> index = P.order_by_id();
+  out.resize(index.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = P.ids()[index[k]];
 }
 
 }  // namespace pbf

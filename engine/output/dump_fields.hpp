@@ -40,6 +40,7 @@ class DumpFields {
   // Field k's components, one value per particle of this rank in memory order (valid until the
   // next call). Collective in a distributed run (derived fields read neighbours).
   std::vector<const real*> columns(Simulation& sim, std::size_t k);
+  // The ids in the order gather() gives the values: ascending.
   void gather_ids(const Simulation& sim, std::vector<std::int64_t>& out) const;
 
  private:

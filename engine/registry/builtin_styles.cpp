@@ -15,6 +15,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_leapfrog(r);
   register_cfl(r);
   register_damping(r);
+  register_outflow(r);
   register_dump_text(r);
   register_dump_vtk(r);
   register_dump_image(r);
@@ -28,6 +29,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_compute_potential_energy(r);
   register_compute_speed(r);
   register_compute_count(r);
+  register_compute_flow(r);
   register_compute_extent(r);
   register_compute_front(r);
   register_compute_load(r);

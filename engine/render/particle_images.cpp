@@ -64,7 +64,7 @@ ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")
 void ParticleImages::init(Simulation& sim) {
   color_.resolve(sim);
   if (spec_.radius == 0) {
-    spec_.radius = 0.55 * lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+    spec_.radius = 0.55 * lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
   }
   const std::string unit = color_.unit(0);
   spec_.label = color_.components(0) == 1 ? color_.names()[0] : "|" + color_.names()[0] + "|";

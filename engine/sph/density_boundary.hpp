@@ -25,6 +25,14 @@ class DensityBoundary {
   // alone) for a wall at rest. A density that is integrated in time (WCSPH's continuity
   // equation) sees the fluid approach the wall at its velocity relative to the wall.
   virtual bool wall_velocity(const Simulation& /*sim*/, const real /*q*/[3], real /*v*/[3]) const { return false; }
+  // Whether the wall is no-slip for the Laplacian viscosity: it then adds its viscous pull
+  // (engine/sph/viscous_wall.hpp). Free-slip walls add none.
+  virtual bool no_slip() const { return false; }
+  // A no-slip wall's pull on the particle at q (memory index `particle`, as for add_density)
+  // moving at v: Psi(d) (v_wall - v)_t, added to `pull` (1/m^2 times m/s); the viscosity
+  // multiplies it by nu (1 + rho0 / rho_i).
+  virtual void add_no_slip(const Simulation& /*sim*/, const real /*q*/[3], std::size_t /*particle*/,
+                           const real /*v*/[3], real /*pull*/[3]) const {}
   // The solver's term for this boundary gave particle i (memory index) the momentum
   // `momentum` (kg m/s) in this step: a boundary that reports the load on itself adds it up
   // (Newton's third law). Called from parallel loops, each index by one thread at a time.

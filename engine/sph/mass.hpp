@@ -41,4 +41,10 @@ double lattice_gradient_sum(double mass, const Kernels& kernels, double rest_den
 // the sum over the lattice sites behind the wall.
 double lattice_wall_density(double mass, const Kernels& kernels, double rest_density);
 
+// What the lattice sites behind a flat wall give a particle of the first layer in the
+// Laplacian viscosity's sum for a shear that is linear in the distance from the wall:
+// sum_j V (-g(r_j)) r_j^2 / (r_j^2 + 0.01 h^2) s_j over those sites, V = mass / rho0, s_j their
+// normal separation from the particle (1/m; engine/sph/viscous_wall.hpp).
+double lattice_wall_shear(double mass, const Kernels& kernels, double rest_density);
+
 }  // namespace pbf

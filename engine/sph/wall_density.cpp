@@ -8,9 +8,8 @@
 namespace pbf {
 
 bool HalfSpaceWall::prepare(const Simulation& sim) {
-  const auto& P = sim.particles();
-  if (sim.global_count() == 0) return false;
-  const double mass = P.mean_mass();
+  const double mass = sim.particle_mass();
+  if (mass == 0) return false;  // no particles yet: nothing to prepare for
   if (mass == prepared_[0] && sim.kernel_radius() == prepared_[1] && sim.rest_density() == prepared_[2]) return false;
   prepared_[0] = mass;
   prepared_[1] = sim.kernel_radius();

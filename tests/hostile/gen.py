@@ -102,6 +102,9 @@ EXTRA = {
     "xsph": ('pbf.fix("xsph", "xsph", {%s})', []),
     # A damping zone over the far end of the fluid block, along x.
     "damping": ('pbf.fix("zone", "damping", {%s})', [("from", "{0.05, 0, 0}"), ("to", "{0.1, 0, 0}")]),
+    # A sink beyond the plane x = 0.09, along +x.
+    "outflow": ('pbf.fix("drain", "outflow", {%s})',
+                [("region", '"half_space"'), ("point", "{0.09, 0, 0}"), ("normal", "{1, 0, 0}")]),
     "dump/text": ('pbf.fix("frames", "dump/text", {%s})', [("path", '"out/f_*.txt"'), ("every", "1")]),
     "dump/vtk": ('pbf.fix("frames", "dump/vtk", {%s})', [("path", '"out/f_*.vtu"'), ("every", "1")]),
     "dump/image": ('pbf.fix("pictures", "dump/image", {%s})',
@@ -196,6 +199,11 @@ NUMERIC = [
      "negative one accelerates, 1e300 is no rate"),
     ("damping", "from", "vec", "RRRAAR", [], "the zone's start, any point up to 1e6 m away ({0,0,0} and "
      "{-1,-1,-1} start it before the fluid, legal); 1e300 is beyond any scene"),
+    ("outflow", "point", "vec", "RRRAAR", [], "any point up to 1e6 m away: {0,0,0} and {-1,-1,-1} put every "
+     "particle beyond the plane, which drains the scene at the first step and the run goes on empty, legal; "
+     "1e300 is beyond any scene"),
+    ("outflow", "normal", "vec", "RRRRAR", [], "a direction of any length up to 1e6: {0,0,0} is none; "
+     "{-1,-1,-1} a sink toward the origin's corner, legal"),
     ("damping", "to", "vec", "RRRAAR", [], "where it is full, any point other than 'from' up to 1e6 m away "
      "({0,0,0}, {-1,-1,-1}: a zone growing toward -x, legal); 1e300 is beyond any scene"),
     ("wcsph", "gamma", "num", "RRRRRR", [], "the Tait exponent is >= 1; 1e300 overflows (rho/rho0)^gamma"),
@@ -288,6 +296,7 @@ NON_NUMERIC = [
     # style, parameter, type, specific values [(label, lua, outcome)]
     ("pbf", "one_sided", "bool", [("false", "false", "A")]),
     ("box", "wall_density", "bool", [("false", "false", "A")]),
+    ("box", "no_slip", "bool", [("true", "true", "A")]),
     ("wcsph", "eos", "string", [("empty", '""', "R"), ("capital", '"Tait"', "R"), ("linear", '"linear"', "A")]),
     ("wcsph", "density", "string", [("empty", '""', "R"), ("continuity", '"continuity"', "A")]),
     ("wcsph", "negative_pressure", "bool", [("true", "true", "A")]),
@@ -311,6 +320,8 @@ NON_NUMERIC = [
     ("dump/movie", "box", "bool", []),
     ("dump/movie", "colorbar", "bool", []),
     ("restart", "path", "string", [("empty", '""', "R"), ("nostar", '"out/r.restart"', "R")]),
+    ("outflow", "region", "string", [("empty", '""', "R"), ("capital", '"Box"', "R"),
+                                     ("box", '"box"', "R"), ("half_space", '"half_space"', "A")]),
     ("front", "axis", "string", [("empty", '""', "R"), ("capital", '"X"', "R"), ("w", '"w"', "R"),
                                  ("z", '"z"', "A")]),
     ("solid", "shape", "string", [("empty", '""', "R"), ("capital", '"Sphere"', "R"), ("unknown", '"cube"', "R"),
@@ -1481,7 +1492,7 @@ def gen_restart(g):
         label = str(where).replace("%", "pc").replace("-", "m").replace(":", "_")
         g.case(f"flip_{label}_b{bit}", read, "refused", dd, f"derive=flip:{where}:{bit}")
     g.section("Other format versions, byte orders and real sizes (header only: the CRC covers the payload).")
-    for v in ["0", "2", "0x01000000", "0xffffffff", "0x80000001"]:
+    for v in ["0", "3", "0x01000000", "0xffffffff", "0x80000001"]:
         g.case(f"version_{v}", read, "refused", f"{dd} && version", f"derive=set:version:u32:{v}")
     g.case("bom_swapped", read, "refused", f"{dd} && byte order", "derive=set:bom:u32:0x04030201")
     g.case("bom_garbage", read, "refused", dd, "derive=set:bom:u32:0xdeadbeef")

@@ -181,13 +181,18 @@ class RestartLayout:
         self.data = data
         self.real = struct.unpack_from("<I", data, 16)[0]
         self.names = {"version": 8, "bom": 12, "real_size": 16, "crc": 20, "payload_size": 24,
-                      "h": 80, "dt": 88, "rho0": 96, "step": 104, "step_base": 112, "time_base": 120,
-                      "count": 128, "id0": 136, "id1": 144}
+                      "h": 80, "dt": 88, "rho0": 96, "step": 104, "step_base": 112, "time_base": 120}
+        # Version 2 adds the periodic axes (u32) and the next id (i64) after the clock.
+        at = 128
+        if struct.unpack_from("<I", data, 8)[0] >= 2:
+            self.names.update({"periodic": 128, "next_id": 132})
+            at = 140
+        self.names.update({"count": at, "id0": at + 8, "id1": at + 16})
         for k in range(3):
             self.names[f"lo{k}"] = 32 + 8 * k
             self.names[f"hi{k}"] = 56 + 8 * k
-        n = struct.unpack_from("<Q", data, 128)[0]
-        p = 136 + 8 * n
+        n = struct.unpack_from("<Q", data, at)[0]
+        p = at + 8 + 8 * n
         self.names["field_count"] = p
         nfields = struct.unpack_from("<I", data, p)[0]
         p += 4

@@ -1,0 +1,10 @@
+-- fix/compute outflow: normal = {0/0, 0/0, 0/0}: refused (a direction of any length up to 1e6: {0,0,0} is none; {-1,-1,-1} a sink toward the origin's corner, legal)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.fix("drain", "outflow", {region = "half_space", point = {0.09, 0, 0}, normal = {0/0, 0/0, 0/0}})
+pbf.run(2)
