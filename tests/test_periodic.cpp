@@ -124,7 +124,8 @@ TEST(Periodic, PairSumsAcrossAFaceAreThoseOfTheUnwrappedScene) {
 
 // Two particles 2 mm apart across the face x = 0 see each other; one moving at (1, 0.5, 0)
 // m/s crosses the face x = L in the second step and is back at the other side in the third,
-// with its id and velocity (a leapfrog without forces: straight at constant speed).
+// with its id and velocity (a leapfrog without forces: straight at constant speed), though
+// box walls and a solid, which hold particles inside the domain, are in the pipeline.
 TEST(Periodic, AParticleThatCrossesAFaceComesBackThroughTheOpposite) {
   const double L = 0.1, h = 0.02, dt = 0.004;
   Simulation sim;
@@ -140,7 +141,11 @@ TEST(Periodic, AParticleThatCrossesAFaceComesBackThroughTheOpposite) {
   const Kernels& K = sim.kernels();
   const double r = a[0] - b[0] - real(L);  // offset to b's image at x + L
   EXPECT_NEAR(sim.summed_density()[0], 0.001 * (K.W(0) + K.W(real(r * r))), 1e-6 * 0.001 * K.W(0));
-  sim.add_fix(StyleRegistry::builtin().make_fix("integrator", "leapfrog", {}));
+  const auto& styles = StyleRegistry::builtin();
+  sim.add_fix(styles.make_fix("integrator", "leapfrog", {}));
+  sim.add_fix(styles.make_fix("walls", "box", {}));  // walls on z only
+  sim.add_fix(styles.make_fix("ball", "solid",  // out of the way: it clamps to the domain but along x and y
+                              {{"shape", std::string("sphere")}, {"center", Vec3{0.05, 0.05, 0.08}}, {"radius", 0.01}}));
   sim.run(2);
   EXPECT_GT(P.x()[0], real(L)) << "the end of a step leaves a particle beyond the face";
   sim.run(1);
