@@ -4,12 +4,17 @@
 -- faces, and meets itself on the other side; every rank's box meets a periodic face or a
 -- neighbour's, so ghosts cross the faces as images. Writes OUT/f_*.txt (id, position,
 -- velocity, density, |omega|), OUT/probes.csv (probes and gauges beside and across the
--- periodic faces, extent, a percentile) and OUT/thermo.csv. -v steps=N (default 200).
+-- periodic faces, extent, a percentile) and OUT/thermo.csv. -v steps=N (default 200);
+-- -v read=FILE continues from a restart, -v save=FILE writes one at the end.
 local s = 0.02
-pbf.domain{lo = {0, 0, 0}, hi = {0.8, 0.2, 0.4}, periodic = {"x", "y"}}
-pbf.kernel_radius(2 * s)
-pbf.timestep(0.002)
-pbf.lattice{lo = {0.2, 0, 0}, hi = {0.5, 0.2, 0.3}, spacing = s}
+if var.read then
+  pbf.read_restart(var.read)
+else
+  pbf.domain{lo = {0, 0, 0}, hi = {0.8, 0.2, 0.4}, periodic = {"x", "y"}}
+  pbf.kernel_radius(2 * s)
+  pbf.timestep(0.002)
+  pbf.lattice{lo = {0.2, 0, 0}, hi = {0.5, 0.2, 0.3}, spacing = s}
+end
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -9.81}})
 pbf.fix("pbf", "pbf", {error = 0.002, max_iterations = 20})
 pbf.fix("vorticity", "vorticity", {})
@@ -34,3 +39,4 @@ pbf.thermo{every = 10, csv = out .. "/thermo.csv",
            columns = {"step", "particles", "ke", "v.max", "v.avg", "err.avg", "err.max", "it.avg"}}
 print(string.format("periodic: %d particles on %d rank(s)", pbf.count(), pbf.ranks()))
 pbf.run(tonumber(var.steps or 200) - pbf.step())
+if var.save then pbf.write_restart(var.save) end
