@@ -231,6 +231,17 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
       if (first == LUA_TTABLE) return point_list(L, index, fmt::format("parameter '{}'", name).c_str());
       // The binding does not know the parameter's type: a table that is no {x, y, z} is
       // told both of what a table can be (the schema then says which one it wanted).
+      if (lua_rawlen(L, index) == 2) {  // a pair of lengths
+        Vec2 v;
+        for (int k = 0; k < 2; ++k) {
+          lua_rawgeti(L, index, k + 1);
+          const bool ok = lua_type(L, -1) == LUA_TNUMBER;
+          v[static_cast<std::size_t>(k)] = lua_tonumber(L, -1);
+          lua_pop(L, 1);
+          if (!ok) throw Error(fmt::format("parameter '{}' must be a pair of numbers {{a, b}}", name));
+        }
+        return v;
+      }
       if (lua_rawlen(L, index) != 3)
         throw Error(fmt::format("parameter '{}' must be a vector {{x, y, z}} or a list of names {{\"a\", \"b\"}}, got a "
                                 "table of {} numbers",

@@ -118,6 +118,20 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
     fixes.push_back({"drain", "outflow", {{"region", std::string("box")}, {"lo", Vec3{0.097, 0, 0}}, {"hi", Vec3{0.2, 0.1, 0.2}}}});
     return {0.0002, fixes, {{"out", "flow", {{"fix", std::string("drain")}}}}};
   }
+  // A jet from above into the box (a disc of radius 2 cm facing down, the scene's spacing)
+  // and a sink over the floor's far end: PBF's layers enter at steps 1, 11, 21 (0.5 m/s),
+  // WCSPH's at steps 1 and 26 (2 m/s), so that a restart at step 15 falls between two.
+  if (name == "PbfEmitter" || name == "WcsphEmitter") {
+    const bool pbf = name == "PbfEmitter";
+    std::vector<StyleSpec> fixes = pbf ? std::vector<StyleSpec>{kGravity, {"pbf", "pbf", {}}} : wcsph("continuity");
+    fixes.push_back(kWalls);
+    fixes.push_back({"jet",
+                     "emitter",
+                     {{"shape", std::string("disc")}, {"center", Vec3{0.15, 0.05, 0.15}}, {"normal", Vec3{0, 0, -1}},
+                      {"radius", 0.02}, {"speed", pbf ? 0.5 : 2.0}}});
+    fixes.push_back({"drain", "outflow", {{"region", std::string("box")}, {"lo", Vec3{0.17, 0, 0}}, {"hi", Vec3{0.2, 0.1, 0.03}}}});
+    return {pbf ? 0.002 : 0.0002, fixes, {{"in", "flow", {{"fix", std::string("jet")}}}}};
+  }
   ADD_FAILURE() << "no pipeline " << name;
   return {};
 }
@@ -125,7 +139,7 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
 // Every pipeline above, for the tests that run them all (::testing::ValuesIn).
 inline const std::vector<const char*> kPipelines = {
     "PbfVorticityXsph", "WcsphSummationLeapfrogArtificialViscosity", "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid",
-    "SampleProbesGauge", "WcsphLaplacianViscosityXsph", "PbfOutflow", "WcsphOutflow"};
+    "SampleProbesGauge", "WcsphLaplacianViscosityXsph", "PbfOutflow", "WcsphOutflow", "PbfEmitter", "WcsphEmitter"};
 
 // A block of 10 x 10 x 8 particles (spacing 1 cm, h = 2 cm) moving at 0.5 m/s along x, in
 // a box twice as long.

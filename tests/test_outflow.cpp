@@ -81,7 +81,7 @@ TEST(Outflow, RemovesAtEachStepsStartWhatItsRegionHoldsAndNothingElse) {
 
 // Which thread removes what changes no bit: the same particles, ids and fields at 1 and 2 threads.
 TEST(Outflow, TheSameBitsAtOneAndTwoThreads) {
-  for (const char* name : {"PbfOutflow", "WcsphOutflow"}) {
+  for (const char* name : {"PbfOutflow", "WcsphOutflow", "PbfEmitter", "WcsphEmitter"}) {
     const auto dir = temp_dir("outflow-threads");
     const Pipeline p = pipeline(name, dir.path() / "out");
     Simulation one, two;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/real.hpp"
 #include "engine/core/stage.hpp"
 
 namespace pbf {
@@ -74,7 +75,10 @@ class Fix {
   virtual const ParticleFlow* particle_flow() const { return nullptr; }
   // The mass of each particle this fix creates during a run (an emitter's; 0: it creates
   // none): a scene that starts empty takes its constants from it (Simulation::particle_mass).
-  virtual double created_mass() const { return 0; }
+  virtual double created_mass(const Simulation&) const { return 0; }
+  // Whether this fix removes a particle at q (a sink's region), so that an emitter can refuse
+  // an opening a sink would empty as it fills.
+  virtual bool removes_at(const real /*q*/[3]) const { return false; }
 
   // Start of every run, before any fix's init(): a fix may change the scene here (a solid
   // leaves out the fluid created inside it), so every init() sees the particles of the run.

@@ -207,7 +207,7 @@ double Simulation::max_kinematic_viscosity() const {
 double Simulation::particle_mass() const {
   if (global_count() > 0) return last_mean_mass_ = particles_.mean_mass();
   for (const auto& f : fixes_)
-    if (f->created_mass() > 0) return f->created_mass();
+    if (const double m = f->created_mass(*this); m > 0) return m;
   return last_mean_mass_;
 }
 

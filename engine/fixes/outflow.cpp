@@ -22,6 +22,7 @@ class Outflow : public Fix {
   std::vector<Stage> stages() const override { return {Stage::exchange}; }
   bool runs_distributed() const override { return true; }  // each rank its own; the tally summed
   const ParticleFlow* particle_flow() const override { return &removed_; }
+  bool removes_at(const real q[3]) const override { return region_.contains(q); }
 
   // (A solid's map is built in its own init, which may come after this one.)
   void init(Simulation&) override { checked_ = false; }

@@ -96,9 +96,13 @@ class Wcsph : public Fix {
   // Particles added between runs start as a new field does (an integrated density of 0 would
   // be a vacuum, the pressure force pulling them apart: NaN within a step).
   void init_new_particles(Simulation& sim, std::span<const std::uint32_t> fresh) override {
+    // Within a run (an emitter's) the integrated density starts at rest density; the summed
+    // density and the pressure are computed before they are read.
+    if (sim.running()) {
+      if (density_ == "continuity") start_density(sim, fresh, false);
+      return;
+    }
     if (filled_) return;  // init just set every particle's
-    // Within a run the summed density and the pressure are computed before they are read.
-    if (sim.running() && density_ == "summation") return;
     start_density(sim, fresh, false);
     auto& P = sim.particles();
     pressure_from_density(sim, P.data(rho_), P.data(pressure_));

@@ -16,6 +16,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_cfl(r);
   register_damping(r);
   register_outflow(r);
+  register_emitter(r);
   register_dump_text(r);
   register_dump_vtk(r);
   register_dump_image(r);

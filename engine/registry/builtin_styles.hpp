@@ -25,6 +25,7 @@ void register_vorticity(StyleRegistry&);
 void register_xsph(StyleRegistry&);
 void register_damping(StyleRegistry&);
 void register_outflow(StyleRegistry&);
+void register_emitter(StyleRegistry&);
 void register_dump_text(StyleRegistry&);
 void register_dump_vtk(StyleRegistry&);
 void register_dump_image(StyleRegistry&);

@@ -20,6 +20,7 @@ const char* type_name(ParamType type) {
     case ParamType::StringList: return "list of names";
     case ParamType::PointList: return "list of points {{x, y, z}, ...}";
     case ParamType::Motion: return "motion: function(t) or pbf.keyframes";
+    case ParamType::Vector2: return "pair {a, b}";
   }
   return "?";
 }
@@ -42,6 +43,7 @@ std::string format_value(const ParamValue& value) {
       return "{" + s + "}";
     }
     std::string operator()(const MotionPtr& v) const { return v ? v->description() : "none"; }
+    std::string operator()(const Vec2& v) const { return fmt::format("{{{}, {}}}", v[0], v[1]); }
   } visitor;
   return std::visit(visitor, value);
 }
@@ -57,6 +59,7 @@ const char* given_type(const ParamValue& value) {
     case 4: return "vector";
     case 5: return "list of names";
     case 6: return "list of points";
+    case 8: return "pair";
     default: return "motion";
   }
 }
@@ -96,6 +99,9 @@ std::optional<ParamValue> coerce(const ParamValue& value, ParamType type) {
     case ParamType::Motion:
       if (auto* v = std::get_if<MotionPtr>(&value)) return *v;
       return std::nullopt;
+    case ParamType::Vector2:
+      if (auto* v = std::get_if<Vec2>(&value)) return *v;
+      return std::nullopt;
   }
   return std::nullopt;
 }
@@ -117,6 +123,8 @@ void check_range(const std::string& what, const ParamSpec& spec, const ParamValu
   if (auto* d = std::get_if<double>(&value)) check(*d);
   if (auto* i = std::get_if<std::int64_t>(&value)) check(static_cast<double>(*i));
   if (auto* v = std::get_if<Vec3>(&value))
+    for (double c : *v) check(c);
+  if (auto* v = std::get_if<Vec2>(&value))
     for (double c : *v) check(c);
   if (auto* v = std::get_if<Points>(&value))
     for (const auto& point : *v)
@@ -206,6 +214,7 @@ std::int64_t Params::integer(const std::string& name) const { return std::get<st
 bool Params::boolean(const std::string& name) const { return std::get<bool>(at(name)); }
 const std::string& Params::string(const std::string& name) const { return std::get<std::string>(at(name)); }
 Vec3 Params::vec3(const std::string& name) const { return std::get<Vec3>(at(name)); }
+Vec2 Params::vec2(const std::string& name) const { return std::get<Vec2>(at(name)); }
 const Names& Params::names(const std::string& name) const { return std::get<Names>(at(name)); }
 const Points& Params::points(const std::string& name) const { return std::get<Points>(at(name)); }
 MotionPtr Params::motion(const std::string& name) const { return std::get<MotionPtr>(at(name)); }

@@ -16,14 +16,15 @@ namespace pbf {
 
 class Motion;  // engine/geometry/motion.hpp: a solid's pose as a function of time
 
-enum class ParamType { Real, Integer, Bool, String, Vector3, StringList, PointList, Motion };
+enum class ParamType { Real, Integer, Bool, String, Vector3, StringList, PointList, Motion, Vector2 };
 const char* type_name(ParamType type);
 
 using Vec3 = std::array<double, 3>;
+using Vec2 = std::array<double, 2>;  // two lengths (a rectangle's sides)
 using Names = std::vector<std::string>;
 using Points = std::vector<Vec3>;
 using MotionPtr = std::shared_ptr<const Motion>;
-using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, Names, Points, MotionPtr>;
+using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, Names, Points, MotionPtr, Vec2>;
 
 std::string format_value(const ParamValue& value);
 
@@ -89,6 +90,7 @@ class Params {
   bool boolean(const std::string& name) const;
   const std::string& string(const std::string& name) const;
   Vec3 vec3(const std::string& name) const;
+  Vec2 vec2(const std::string& name) const;
   const Names& names(const std::string& name) const;
   const Points& points(const std::string& name) const;
   MotionPtr motion(const std::string& name) const;

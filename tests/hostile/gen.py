@@ -105,6 +105,10 @@ EXTRA = {
     # A sink beyond the plane x = 0.09, along +x.
     "outflow": ('pbf.fix("drain", "outflow", {%s})',
                 [("region", '"half_space"'), ("point", "{0.09, 0, 0}"), ("normal", "{1, 0, 0}")]),
+    # An inlet 2 x 2 cm above the fluid block, facing down.
+    "emitter": ('pbf.fix("jet", "emitter", {%s})',
+                [("center", "{0.08, 0.05, 0.08}"), ("normal", "{0, 0, -1}"), ("size", "{0.02, 0.02}"),
+                 ("speed", "0.5")]),
     "dump/text": ('pbf.fix("frames", "dump/text", {%s})', [("path", '"out/f_*.txt"'), ("every", "1")]),
     "dump/vtk": ('pbf.fix("frames", "dump/vtk", {%s})', [("path", '"out/f_*.vtu"'), ("every", "1")]),
     "dump/image": ('pbf.fix("pictures", "dump/image", {%s})',
@@ -204,6 +208,16 @@ NUMERIC = [
      "1e300 is beyond any scene"),
     ("outflow", "normal", "vec", "RRRRAR", [], "a direction of any length up to 1e6: {0,0,0} is none; "
      "{-1,-1,-1} a sink toward the origin's corner, legal"),
+    ("emitter", "speed", "num", "RRRRRR", [], "an inflow speed in (0, 1e6] m/s: 0 brings nothing in, a negative "
+     "one would take fluid out"),
+    ("emitter", "center", "vec", "RRRRRR", [], "the opening must lie in the domain and face into it: at the corner "
+     "{0,0,0} its first layer would leave the domain, {-1,-1,-1} is outside it"),
+    ("emitter", "normal", "vec", "RRRRAR", [], "a direction of any length up to 1e6: {0,0,0} is none; {-1,-1,-1} "
+     "enters diagonally, legal"),
+    ("emitter", "start", "num", "RRRAAR", [], "any time up to 1e12 s: 0 (the default) and -1 (already running) "
+     "are legal"),
+    ("emitter", "stop", "num", "RRRRRR", [], "a time after 'start' (0): 0 and -1 are not, 1e300 beyond any run"),
+    ("emitter", "spacing", "num", "RRRRRR", [], "a spacing in (0, 1e6] m; 1e300 is no spacing"),
     ("damping", "to", "vec", "RRRAAR", [], "where it is full, any point other than 'from' up to 1e6 m away "
      "({0,0,0}, {-1,-1,-1}: a zone growing toward -x, legal); 1e300 is beyond any scene"),
     ("wcsph", "gamma", "num", "RRRRRR", [], "the Tait exponent is >= 1; 1e300 overflows (rho/rho0)^gamma"),
@@ -322,6 +336,8 @@ NON_NUMERIC = [
     ("restart", "path", "string", [("empty", '""', "R"), ("nostar", '"out/r.restart"', "R")]),
     ("outflow", "region", "string", [("empty", '""', "R"), ("capital", '"Box"', "R"),
                                      ("box", '"box"', "R"), ("half_space", '"half_space"', "A")]),
+    ("emitter", "shape", "string", [("empty", '""', "R"), ("capital", '"Disc"', "R"),
+                                     ("disc", '"disc"', "R"), ("rectangle", '"rectangle"', "A")]),
     ("front", "axis", "string", [("empty", '""', "R"), ("capital", '"X"', "R"), ("w", '"w"', "R"),
                                  ("z", '"z"', "A")]),
     ("solid", "shape", "string", [("empty", '""', "R"), ("capital", '"Sphere"', "R"), ("unknown", '"cube"', "R"),

@@ -7,6 +7,9 @@ Cases:
   identical   tests/mpi/dambreak.lua on 1 process, 2 and 3 ranks: every text frame, the
               probes' CSV and the thermo CSV have the same bytes (the fluid crosses every
               rank boundary), and the VTK frames' pieces hold the rows of the 1-process .vtu.
+  identical_flow  tests/mpi/inflow.lua (an emitter and a sink), both solvers: frames and thermo
+              identical at 1 to 4 ranks, initial + in - out = present, and a restart written on 3
+              ranks continued on 2 as the run that never stopped.
   identical_wcsph  scenarios/dambreak.lua with WCSPH (leapfrog, wcsph, sph_viscosity, cfl)
               likewise: frames, dump/image's pictures and the thermo CSV (the front, the
               gauge at the back wall).
@@ -178,6 +181,37 @@ def identical_periodic(args, work):
                 fail(f"{name} of the periodic run continued {where} differs from the run that never stopped")
     print(f"periodic x and y: {len(frames)} frames, probes.csv and thermo.csv identical at 1, 2, 3 and 4 ranks; "
           f"a restart written on 3 ranks, continued on 2 and on 1: {', '.join(later)} identical")
+
+
+def identical_flow(args, work):
+    """An emitter and a sink: the same frames and thermo at 1 to 4 ranks, both solvers, and a
+    restart written on 3 ranks continued on 2 as the run that never stopped."""
+    script = os.path.join(HERE, "inflow.lua")
+    for solver in ("pbf", "wcsph"):
+        steps = 200 if solver == "pbf" else 800
+        base = os.path.join(work, solver)
+        os.makedirs(base)
+        out, frames = same_outputs(args, base, script, {"solver": solver, "steps": steps}, ["thermo.csv"],
+                                   rank_counts=(1, 2, 3, 4))
+        with open(os.path.join(out, "thermo.csv")) as f:
+            rows = [line.strip().split(",") for line in f][2:]
+        last = rows[-1]
+        if not (float(last[2]) > 0 and float(last[4]) > 0):
+            fail(f"{solver}: nothing came in or went out ({last})")
+        if int(float(last[1])) != int(float(rows[0][1])) + int(float(last[2])) - int(float(last[4])):
+            fail(f"{solver}: the count is not initial + in - out ({last})")
+        saved = os.path.join(base, "half.restart")
+        for ranks, variables in [(3, {"out": os.path.join(base, "first"), "steps": steps // 2, "save": saved}),
+                                 (2, {"out": os.path.join(base, "on2"), "read": saved})]:
+            result = run(args, ranks, script, dict(variables, solver=solver, steps=variables.get("steps", steps)), base)
+            if result.returncode != 0:
+                fail(f"{solver} {ranks} rank(s) with {variables}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+        later = [f for f in frames if int(f[2:7]) * 50 > steps // 2]
+        for name in later:
+            if not filecmp.cmp(os.path.join(out, name), os.path.join(base, "on2", name), shallow=False):
+                fail(f"{solver}: {name} of the run continued on 2 ranks differs from the run that never stopped")
+        print(f"{solver}: {len(frames)} frames and thermo.csv identical at 1 to 4 ranks ({last[2]} in, {last[4]} out); "
+              f"a restart on 3 ranks continued on 2: {', '.join(later)} identical")
 
 
 def identical_wcsph(args, work):
@@ -447,7 +481,7 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_periodic", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
+                        choices=["identical", "identical_flow", "identical_periodic", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
                                  "script_error",
                                  "rank_error", "per_particle", "signals"])
     args = parser.parse_args()

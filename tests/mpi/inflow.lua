@@ -1,0 +1,39 @@
+-- tests/mpi/inflow.lua: fluid that comes and goes, for the distributed-run tests (tests/mpi/run.py):
+-- a pool in a tank's first third, a jet entering across its far wall (a 6 x 4 cm emitter facing -x,
+-- at the height the first cut of every rank count passes) and a drain over the floor's middle
+-- that the pool's spreading front reaches. Both cross the ranks' boundaries; the particles the
+-- emitter creates are numbered as one process numbers them, wherever they land.
+-- Writes OUT/f_*.txt (id, position, velocity), OUT/thermo.csv (the count, what came in and
+-- what went out). -v solver=wcsph for WCSPH; -v read=FILE continues from a restart, -v
+-- save=FILE writes one at the end; -v steps=N runs until step N (default 200).
+local s = 0.02
+local wcsph = var.solver == "wcsph"
+if var.read then
+  pbf.read_restart(var.read)
+else
+  pbf.domain{lo = {0, 0, 0}, hi = {0.6, 0.2, 0.4}}
+  pbf.kernel_radius(2 * s)
+  pbf.timestep(wcsph and 0.0005 or 0.002)
+  pbf.lattice{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.16}, spacing = s}
+end
+pbf.fix("gravity", "gravity", {acceleration = {0, 0, -9.81}})
+if wcsph then
+  pbf.fix("integrator", "leapfrog", {})
+  pbf.fix("wcsph", "wcsph", {density = "continuity", sound_speed = 25})
+  pbf.fix("viscosity", "sph_viscosity", {})
+else
+  pbf.fix("pbf", "pbf", {iterations = 4})
+end
+pbf.fix("walls", "box", {})
+pbf.fix("jet", "emitter", {center = {0.58, 0.1, 0.3}, normal = {-1, 0, 0}, size = {0.06, 0.04}, speed = 1.0})
+pbf.fix("drain", "outflow", {region = "box", lo = {0.3, 0, 0}, hi = {0.4, 0.2, 0.03}})
+pbf.compute("n", "count")
+pbf.compute("in", "flow", {fix = "jet"})
+pbf.compute("out", "flow", {fix = "drain"})
+pbf.compute("v", "speed")
+local out = var.out or "out/inflow"
+pbf.fix("dump", "dump/text", {path = out .. "/f_*.txt", every = 50, fields = {"id", "position", "velocity"}})
+pbf.thermo{every = 10, csv = out .. "/thermo.csv",
+           columns = {"step", "n", "in.count", "in.mass", "out.count", "out.mass", "v.max"}}
+pbf.run(tonumber(var.steps or 200) - pbf.step())
+if var.save then pbf.write_restart(var.save) end
