@@ -19,10 +19,10 @@
 -- compare the solver variants of docs/physics.md (default: the styles' defaults, pbfengine
 -- help pbf); dt_iterations: PBF's time step chosen by fix cfl, the largest in which the
 -- accuracy target `error` takes at most that many iterations (with courant, default 0.4, and
--- max_dt). support: the kernel radius h in spacings (default 2).
--- solver: "pbf" (default) or "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000
--- particles by default, as its steps are set by the sound speed: alpha, eos, sound_speed,
--- courant and fixed_dt pass to it; scenarios/dambreak_wcsph.lua runs it).
+-- max_dt). support: the kernel radius h in spacings (default 2). periodic: axes along which
+-- the tank repeats ("y": an endless tank's quasi-2D flow). solver: "pbf" (default) or
+-- "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000 particles by default, as its steps
+-- are set by the sound speed: alpha, eos, sound_speed, courant and fixed_dt pass to it; scenarios/dambreak_wcsph.lua runs it).
 -- Output beyond the text frames: images (seconds between PNG pictures, out/image_*.png),
 -- movie (an mp4 path, 50 pictures per simulated second), vtk (seconds between ParaView
 -- frames, out/vtk/frame_*.vtu and out/vtk/frame.pvd).
@@ -31,7 +31,7 @@
 -- continues from one (the scene comes from the file, the pipeline from this script, and the
 -- run goes on to t_end).
 package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
-local flag = require("flag")
+local flag, axes = require("flag"), require("axes")
 local solver = var.solver or "pbf"
 assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
 local N = var.particles or (solver == "wcsph" and 8000 or 30000)
@@ -60,7 +60,7 @@ local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * g * heig
 -- The scene, or with -v restart=FILE the scene saved in FILE (domain, h, dt, particles, step
 -- and time): pbf.scene reads it and does not call the function.
 local scene = pbf.scene(function()
-  pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 4 * a}}   -- tall enough for the run-up on the far wall
+  pbf.domain{lo = {0, 0, 0}, hi = {5 * a, depth, 4 * a}, periodic = axes(var.periodic)}   -- tall enough for the run-up
   pbf.kernel_radius(h)
   pbf.timestep(dt)
   pbf.lattice{lo = {0, 0, 0}, hi = {a, depth, height}, spacing = s}

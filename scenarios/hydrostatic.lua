@@ -11,11 +11,14 @@
 -- epsilon, one_sided, wall_density, contact (the walls' contact_distance) and scorr_k (default: the styles' defaults, see
 -- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
 -- csv (thermo CSV file, default none), out (frame directory, default none), solver ("pbf",
--- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha).
+-- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha),
+-- periodic (axes along which the domain repeats, e.g. "xy": a layer of water without side
+-- walls, whose lattice tiles the period).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local geometry = here .. "geometry/"
 local flag = require("flag")
+local axes = require("axes")
 local N = var.particles or 8000
 local t_end = var.t_end or 2.0
 local H = var.height or 0.4
@@ -25,7 +28,7 @@ s = W / math.floor(W / s + 0.5)             -- a whole number of layers across
 local h = 2 * s                             -- kernel radius
 local dt = var.dt or 0.4 * h / math.sqrt(2 * 9.81 * H)
 
-pbf.domain{lo = {0, 0, 0}, hi = {W, W, 1.5 * H}}
+pbf.domain{lo = {0, 0, 0}, hi = {W, W, 1.5 * H}, periodic = axes(var.periodic)}
 pbf.kernel_radius(h)
 pbf.timestep(dt)
 pbf.lattice{lo = {0, 0, 0}, hi = {W, W, H}, spacing = s}

@@ -35,19 +35,29 @@ int l_domain(lua_State* L) {
     S.not_running("pbf.domain");
     const Params p = table_arg(L, 1, "pbf.domain",
                                {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
-                                {"hi", ParamType::Vector3, std::nullopt, "m", ""}});
+                                {"hi", ParamType::Vector3, std::nullopt, "m", ""},
+                                ParamSpec{"periodic", ParamType::StringList, Names{}, "", ""}.one_of({"x", "y", "z"})});
     Domain d;
     for (int a = 0; a < 3; ++a) {
       d.lo[a] = p.vec3("lo")[a];
       d.hi[a] = p.vec3("hi")[a];
     }
+    for (const std::string& axis : p.names("periodic")) d.periodic[axis[0] - 'x'] = true;
     S.sim.set_domain(d);
   }
-  lua_createtable(L, 0, 2);
-  push_vec3(L, S.sim.domain().lo);
+  const Domain& d = S.sim.domain();
+  lua_createtable(L, 0, 3);
+  push_vec3(L, d.lo);
   lua_setfield(L, -2, "lo");
-  push_vec3(L, S.sim.domain().hi);
+  push_vec3(L, d.hi);
   lua_setfield(L, -2, "hi");
+  lua_createtable(L, 3, 0);  // the periodic axes' names
+  for (int a = 0, k = 0; a < 3; ++a)
+    if (d.periodic[a]) {
+      lua_pushstring(L, std::string(1, "xyz"[a]).c_str());
+      lua_rawseti(L, -2, ++k);
+    }
+  lua_setfield(L, -2, "periodic");
   return 1;
 }
 

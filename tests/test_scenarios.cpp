@@ -60,12 +60,21 @@ INSTANTIATE_TEST_SUITE_P(TwoResolutions, Hydrostatic, ::testing::Values(2000, 50
 // after 1 s: mean speed below 0.01 m/s and no particle above 0.05 m/s (a settled column has
 // no speed but its noise; 0.05 m/s is a 0.1 mm displacement in a 2 ms step), its top steady
 // within 1% and within one spacing of where it started. In the analytic box, and in the same
-// box as a mesh container (scenarios/geometry/unit_box.obj through the solid's density map).
+// box as a mesh container (scenarios/geometry/unit_box.obj through the solid's density map),
+// and as a layer periodic along x and y (no side walls: the lattice tiles the period, so the
+// fluid continues through the faces as if endless; issue 32). WCSPH's layer rings longer: the
+// column settles from zero pressure and starts the layer's acoustic mode (period 4 H / c0 =
+// 0.03 s, velocity amplitude g H / c0 = 0.077 m/s at c0 = 10 sqrt(2 g H)), which stays one
+// dimensional without side walls, where the box's walls turn it into shear that the artificial
+// viscosity damps; its mean speed is bounded by a quarter of that amplitude after 1 s
+// (measured 2026-11-28: at most 0.0102 m/s, against 0.0006 m/s in the box).
 struct StillCase {
   const char* solver;
   const char* walls;
+  const char* periodic = "";    // the domain's periodic axes
+  double most_mean_speed = 0.01;  // m/s, after 1 s
 };
-void PrintTo(const StillCase& c, std::ostream* os) { *os << c.solver << " in " << c.walls; }
+void PrintTo(const StillCase& c, std::ostream* os) { *os << c.solver << " in " << c.walls << " " << c.periodic; }
 
 class StillColumn : public ::testing::TestWithParam<StillCase> {};
 
@@ -77,11 +86,13 @@ const double kMostSpeed = sizeof(pbf::real) == 8 ? 0.05 : std::sqrt(2 * 9.81 * 0
 
 TEST_P(StillColumn, RestsAtTheDefaults) {
   const std::string solver = GetParam().solver, walls = GetParam().walls;
-  const auto dir = pbf::test::temp_dir("still-column-" + solver + "-" + walls);
+  const auto dir = pbf::test::temp_dir("still-column-" + solver + "-" + walls + GetParam().periodic);
   const std::string size = solver == "pbf" ? " -v particles=6912 -v width=0.24 -v dt=0.002"
                                            : " -v particles=1728 -v width=0.12";
+  const std::string periodic = GetParam().periodic;
   auto r = run_engine("run " + scenario("hydrostatic.lua") + " -v solver=" + solver + " -v walls=" + walls +
-                      " -v height=0.12" + size + " -v t_end=1.6 -v csv=" + (dir / "thermo.csv").string());
+                      " -v height=0.12" + size + " -v t_end=1.6 -v csv=" + (dir / "thermo.csv").string() +
+                      (periodic.empty() ? "" : " -v periodic=" + periodic));
   ASSERT_EQ(r.code, 0) << r.output;
   auto c = read_csv(dir / "thermo.csv");
   const double s = 0.01, top0 = c["top"].front();
@@ -90,7 +101,7 @@ TEST_P(StillColumn, RestsAtTheDefaults) {
   for (std::size_t k = 0; k < c["time"].size(); ++k) {
     if (c["time"][k] < 1.0) continue;
     if (top1 < 0) top1 = c["top"][k];
-    EXPECT_LT(c["v.avg"][k], 0.01) << "t = " << c["time"][k];
+    EXPECT_LT(c["v.avg"][k], GetParam().most_mean_speed) << "t = " << c["time"][k];
     EXPECT_LT(c["v.max"][k], kMostSpeed) << "t = " << c["time"][k];
     EXPECT_NEAR(c["top"][k], top1, 0.01 * top1) << "t = " << c["time"][k];
     EXPECT_NEAR(c["top"][k], top0, s) << "t = " << c["time"][k];
@@ -101,9 +112,13 @@ TEST_P(StillColumn, RestsAtTheDefaults) {
 
 INSTANTIATE_TEST_SUITE_P(BothSolvers, StillColumn,
                          ::testing::Values(StillCase{"pbf", "box"}, StillCase{"wcsph", "box"},
-                                           StillCase{"pbf", "mesh"}, StillCase{"wcsph", "mesh"}),
+                                           StillCase{"pbf", "mesh"}, StillCase{"wcsph", "mesh"},
+                                           StillCase{"pbf", "box", "xy"},
+                                           StillCase{"wcsph", "box", "xy", 0.25 * 9.81 * 0.12 / (10 * std::sqrt(2 * 9.81 * 0.12))}),
                          [](const ::testing::TestParamInfo<StillCase>& info) {
-                           return std::string(info.param.solver) + "_" + info.param.walls;
+                           const std::string periodic = info.param.periodic;
+                           return std::string(info.param.solver) + "_" + info.param.walls +
+                                  (periodic.empty() ? "" : "_periodic_" + periodic);
                          });
 
 TEST(DamBreak, SurgesForwardWithoutLosingParticles) {

@@ -1,4 +1,6 @@
-// extent: the bounding box of the fluid, min and max of x, y and z (m).
+// extent: the bounding box of the fluid, min and max of x, y and z (m). Along a periodic axis
+// the particles' coordinates as they are: within the domain, but for a particle that crossed a
+// face in the last step (it wraps at the next step's start), up to a step's travel beyond it.
 #include <algorithm>
 #include <cmath>
 
@@ -46,7 +48,8 @@ class Extent : public Compute {
 void register_compute_extent(StyleRegistry& r) {
   r.add({"extent", StyleKind::compute, "bounding box of the fluid: xmin, xmax, ymin, ymax, zmin, zmax (m)", {},
          nullptr, make_compute<Extent>(),
-         "`xmin`, `xmax`, `ymin`, `ymax`, `zmin`, `zmax` (m)"});
+         "`xmin`, `xmax`, `ymin`, `ymax`, `zmin`, `zmax` (m); along a periodic axis the coordinates as they are (a "
+         "particle that crossed a face in the last step lies up to a step's travel beyond it until the next wraps it)"});
 }
 
 }  // namespace pbf

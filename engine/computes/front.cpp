@@ -1,5 +1,6 @@
 // front: a percentile of one coordinate (m), a dam-break surge front that one stray
-// droplet does not move (the farthest particle would).
+// droplet does not move (the farthest particle would). Along a periodic axis the coordinates
+// as they are, not unwrapped: a front that goes through a face comes back at the other side.
 #include <algorithm>
 #include <cmath>
 
@@ -46,7 +47,8 @@ void register_compute_front(StyleRegistry& r) {
          {ParamSpec{"axis", ParamType::String, std::string("x"), "", "the coordinate"}.one_of({"x", "y", "z"}),
           ParamSpec{"percentile", ParamType::Real, 99.0, "%", "percentile of the particles' coordinate"}.within(0, 100)},
          nullptr, make_compute<Front>(),
-         "one, the coordinate (m)"});
+         "one, the coordinate (m); along a periodic axis of the coordinates as they are, within the domain (a "
+         "front that goes through a face comes back at the other side)"});
 }
 
 }  // namespace pbf

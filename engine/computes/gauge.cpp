@@ -17,6 +17,8 @@
 // below 1/2 on the whole line (dry). A lone droplet has f = V W(0) ~ 0.2 at h = 2s, so spray
 // above the surface does not count; a thick enough sheet does.
 //
+// Near a periodic face the sums reach the particles across it (their periodic images, which the
+// point cells hold), so a gauge there reads as one in the middle.
 // Each sum runs serially in PointQuery's fixed order: the same bits at any thread count, and on
 // any number of ranks (each sample is measured by the rank whose box holds it).
 #include <algorithm>
@@ -133,7 +135,8 @@ void register_compute_gauge(StyleRegistry& r) {
           ParamSpec{"labels", ParamType::StringList, std::nullopt, "",
                     "one name per gauge (default: the values are h1, h2, ..)", true}},
          nullptr, make_compute<Gauge>(),
-         "one per point: `h1`, `h2`, ..., or `LABEL` with `labels` (m)"});
+         "one per point: `h1`, `h2`, ..., or `LABEL` with `labels` (m); near a periodic face the fraction counts "
+         "the fluid across it, so a gauge there reads as one in the middle"});
 }
 
 }  // namespace pbf

@@ -14,7 +14,8 @@
 // A is the solver's "pressure" field (gauge pressure, 0 at a free surface: wcsph's equation
 // of state, pbf's from its multipliers, docs/physics.md "Pressure in PBF"), the velocity, or
 // the density the solver uses (Simulation::solver_density). Each point's sum runs serially in
-// the fixed order of PointQuery, so the values have the same bits at any thread count.
+// the fixed order of PointQuery, so the values have the same bits at any thread count. Near a
+// periodic face the sum reaches the particles across it (their images, in the point cells).
 #include <fmt/format.h>
 
 #include "engine/computes/point_compute.hpp"
@@ -54,9 +55,11 @@ class Probe : public PointCompute {
     check_inside(sim.domain());  // a domain changed since the last check
     const auto& P = sim.particles();
     // The density first: its sums may rebuild the ghosts, which moves every array; the point
-    // cells then find them current. Pointers into the particles only after both.
-    const real* density = field_ == "density" ? sim.solver_density() : nullptr;
+    // cells then find them current. Pointers into the particles only after both (a density
+    // field's too: the point cells may rebuild the ghosts, periodic images included).
+    if (field_ == "density") sim.solver_density();
     const NeighborGrid& cells = sim.point_cells();
+    const real* density = field_ == "density" ? sim.solver_density() : nullptr;  // current: no rebuild
     const real* a[3] = {nullptr, nullptr, nullptr};
     int components = 1;
     if (field_ == "velocity") {
@@ -120,7 +123,7 @@ void register_compute_probe(StyleRegistry& r) {
                     "one name per point (default: the values are p1.., rho1.., vx1, vy1, vz1, ..)", true}},
          nullptr, make_compute<Probe>(),
          "one per point: `p1`, `p2`, ... (Pa), `rho1`, ... (kg/m^3) or `vx1`, `vy1`, `vz1`, ... (m/s); with "
-         "`labels`, `LABEL` (`LABEL_vx`, ...)"});
+         "`labels`, `LABEL` (`LABEL_vx`, ...); near a periodic face the sums take in the particles across it"});
 }
 
 }  // namespace pbf

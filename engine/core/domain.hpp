@@ -1,6 +1,13 @@
 #pragma once
 // The simulation box: axis-aligned, z up. Walls, if any, are fixes; the domain only says
 // where particles may be at the end of a step and bounds the neighbour grid.
+//
+// A periodic axis repeats with period L = real(hi - lo) (the one convention for an image
+// everywhere: computed once in double, rounded once to the particles' precision): particle
+// j's images sit at x_j +/- L, each coordinate the sum of two reals rounded once, the same on
+// every rank. Positions wrap into [real(lo), real(hi)) at the start of each step
+// (wrap_periodic); within a step a particle may cross a face, so along a periodic axis the
+// domain holds [lo - L, hi + L].
 #include "engine/core/real.hpp"
 
 namespace pbf {
@@ -12,12 +19,34 @@ struct Domain {
   // through the opposite one, and pairs see each other across the faces.
   bool periodic[3] = {false, false, false};
 
+  bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
+  // The offset of an image along a periodic axis.
+  real period(int axis) const { return real(hi[axis] - lo[axis]); }
+  // The coordinate of the image `shift` periods (-1, 0 or 1) away: one rounding.
+  real image(int axis, real v, int shift) const {
+    return shift > 0 ? v + period(axis) : (shift < 0 ? v - period(axis) : v);
+  }
+
   // Compared in the particle data's precision, as walls clamp positions to real(lo), real(hi).
-  bool contains(real x, real y, real z) const {
-    return x >= real(lo[0]) && x <= real(hi[0]) && y >= real(lo[1]) && y <= real(hi[1]) && z >= real(lo[2]) &&
-           z <= real(hi[2]);
+  bool contains(real x, real y, real z) const { return along(0, x) && along(1, y) && along(2, z); }
+  bool along(int axis, real v) const {
+    if (!periodic[axis]) return v >= real(lo[axis]) && v <= real(hi[axis]);
+    const real L = period(axis);
+    return v >= real(lo[axis]) - L && v <= real(hi[axis]) + L;
   }
   double extent(int axis) const { return hi[axis] - lo[axis]; }
+
+  // The coordinate along a periodic axis moved by one period into [real(lo), real(hi)): at
+  // most one period (a step moves a particle less, the end-of-step check holds it to that),
+  // and a result the rounding of v -/+ L leaves outside goes to the face lo, so that wrapping
+  // a wrapped coordinate changes nothing (a restart's run start wraps again).
+  real wrapped(int axis, real v) const {
+    const real low = real(lo[axis]), high = real(hi[axis]);
+    if (v >= high) v -= period(axis);
+    else if (v < low) v += period(axis);
+    else return v;
+    return v >= low && v < high ? v : low;
+  }
 };
 
 }  // namespace pbf

@@ -30,6 +30,7 @@ void Simulation::run_until(double time) {
 
 void RunLoop::prepare() {
   auto& P = sim_.particles_;
+  sim_.wrap_periodic();  // a scene made or read with particles beyond a periodic face
   sim_.check_inside_domain();
   sim_.collect_boundaries();
   sim_.warn_unmatched_states();
@@ -90,6 +91,8 @@ void RunLoop::prepare() {
     const char* stage = stage_name(static_cast<Stage>(s));
     if (static_cast<Stage>(s) == Stage::neighbors && neighbors_) {
       row_reorder_ = timing_.row(stage, "reorder particles along the grid");
+      if (!sim_.particles_.distributed() && sim_.domain_.any_periodic())
+        row_ghosts_ = timing_.row(stage, "periodic images (ghosts)");
       row_binning_ = timing_.row(stage, "binning (candidates)");
       row_lists_ = timing_.row(stage, "neighbour lists");
     }
@@ -200,7 +203,7 @@ void RunLoop::run(std::int64_t steps, double until) {
     }
   }
   for (const auto& f : sim_.fixes_) f->finish(sim_);
-  if (sim_.check_ghosts_ && !P.distributed()) {  // between runs the particles are as without the check
+  if (!P.distributed() && P.ghosts() > 0) {  // between runs the particles have no images or copies
     P.drop_ghosts();
     sim_.lists_valid_ = false;
   }
@@ -225,13 +228,14 @@ void RunLoop::run(std::int64_t steps, double until) {
 void RunLoop::step() {
   auto& P = sim_.particles_;
   const std::int64_t number = sim_.step_ + 1;  // the step being computed
+  sim_.wrap_periodic();  // particles that crossed a periodic face come back by a period
   if (!hooks_[static_cast<int>(Stage::exchange)].empty()) exchange();
   if (P.distributed()) {  // particles that left this rank's box go to their owners
     const double t0 = now();
     sim_.decomposition_.migrate(P, sim_.geometry_);
     sim_.positions_changed();
     timing_.add(row_migrate_, now() - t0);
-  } else if (sim_.check_ghosts_ && P.ghosts() > 0) {  // the copies, made again at the neighbour stage
+  } else if (P.ghosts() > 0) {  // images and copies, made again at the neighbour stage
     P.drop_ghosts();
     sim_.lists_valid_ = false;
   }
@@ -248,7 +252,7 @@ void RunLoop::step() {
   run_stage(Stage::predict);
   if (neighbors_) {
     const Simulation::ListTimes times = sim_.bin_and_list();
-    if (P.distributed()) timing_.add(row_ghosts_, times.ghosts);
+    if (P.distributed() || sim_.domain_.any_periodic()) timing_.add(row_ghosts_, times.ghosts);
     timing_.add(row_binning_, times.binning);
     timing_.add(row_lists_, times.lists);
     neighbor_mean_sum_ += sim_.grid_.mean_neighbors();

@@ -1,18 +1,16 @@
+// The simulation (engine/core/simulation.hpp): the scene's settings, the pipeline, the density
+// service and the scratch arrays; the neighbour lists and the ghosts are in simulation_neighbors.cpp.
 #include "engine/core/simulation.hpp"
-
-#include <omp.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <limits>
 #include <fmt/format.h>
 
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
 #include "engine/core/parallel.hpp"
-#include "engine/distributed/comm.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/sph/pair_sums.hpp"
 #include "engine/sph/resolution.hpp"
@@ -22,11 +20,25 @@ namespace pbf {
 Simulation::Simulation() = default;
 Simulation::~Simulation() = default;
 
+namespace {
+// A period shorter than 2 h would put a particle within h of two images of another (or of
+// its own), and the grid's cells in one period would be fewer than two.
+void check_periodic_lengths(const Domain& domain, double h) {
+  for (int a = 0; a < 3; ++a)
+    if (domain.periodic[a] && domain.extent(a) < 2 * h)
+      throw Error(fmt::format("domain: the periodic axis {} is {:.6g} m long, shorter than two kernel radii (2 h = "
+                              "{:.6g} m): a particle would meet its own image; lengthen the domain along {}, or make "
+                              "{} not periodic",
+                              "xyz"[a], domain.extent(a), 2 * h, "xyz"[a], "xyz"[a]));
+}
+}  // namespace
+
 void Simulation::set_domain(const Domain& domain) {
   for (int a = 0; a < 3; ++a)
     if (!(domain.hi[a] > domain.lo[a]) || !std::isfinite(domain.hi[a] - domain.lo[a]))
       throw Error(fmt::format("domain: hi must exceed lo along every axis (axis {}: lo {}, hi {})", "xyz"[a],
                               domain.lo[a], domain.hi[a]));
+  if (h_ > 0) check_periodic_lengths(domain, h_);
   domain_ = domain;
   domain_set_ = true;
   positions_changed();
@@ -45,6 +57,7 @@ void Simulation::set_kernel_radius(double h) {
   // Particles made for another h (pbf.kernel_radius after pbf.lattice): checked against it now.
   const auto& P = particles_;
   if (P.size() > 1) check_kernel_radius(h, sampled_spacing(P.x(), P.y(), P.z(), P.size()), "pbf.kernel_radius");
+  check_periodic_lengths(domain_, h);
   h_ = h;
   kernels_ = kernels;
   positions_changed();
@@ -66,6 +79,7 @@ void Simulation::set_rest_density(double rho0) {
 }
 
 void Simulation::check_scale() const {
+  check_periodic_lengths(domain_, h_);
   constexpr double kMostRadii = 1e6;
   for (int a = 0; a < 3; ++a) {
     const double reach = std::max(std::fabs(domain_.lo[a]), std::fabs(domain_.hi[a]));
@@ -223,133 +237,6 @@ Compute* Simulation::find_compute(const std::string& id) const {
   return nullptr;
 }
 
-void Simulation::place_particles() {
-  auto& P = particles_;
-  if (!P.distributed()) return;
-  if (h_ <= 0) throw Error("the kernel radius h is not set");
-  // The cells are the whole domain's, from every rank's count, so that every rank lists
-  // neighbours alike (engine/distributed/decomposition.hpp); a count that changed them (a
-  // solid left particles out) re-cuts the boxes.
-  const GridGeometry cells = GridGeometry::of(domain_, h_, P.global_size());
-  if (P.unplaced() == 0 && cells == geometry_) return;
-  geometry_ = cells;
-  decomposition_.distribute(P, geometry_);
-  positions_changed();
-}
-
-void Simulation::refresh_neighbors() {
-  place_particles();
-  if (lists_valid_ && grid_version_ == positions_version_ && grid_.particle_count() == particles_.size()) return;
-  if (h_ <= 0) throw Error("the kernel radius h is not set");
-  if (!particles_.distributed()) geometry_ = GridGeometry::of(domain_, h_, particles_.size());
-  bin_and_list();
-}
-
-Simulation::ListTimes Simulation::bin_and_list() {
-  auto& P = particles_;
-  ListTimes times;
-  double t = omp_get_wtime();
-  auto lap = [&](double& seconds) {
-    const double now = omp_get_wtime();
-    seconds = now - t;
-    t = now;
-  };
-  rebuild_ghosts();
-  lap(times.ghosts);
-  // Each list in cell order, then id: memory order plays no part. The copies of
-  // check_ghosts() are not binned: the lists name them in place of the particles.
-  const bool copies = check_ghosts_ && !P.distributed();
-  grid_.bin(P.x(), P.y(), P.z(), copies ? P.size() : P.size_with_ghosts(), geometry_, ghost_range_, P.ids());
-  lap(times.binning);
-  grid_.build_lists(P.x(), P.y(), P.z(), h_, P.size());
-  if (copies) grid_.offset_neighbors(static_cast<std::uint32_t>(P.size()));
-  lap(times.lists);
-  grid_version_ = positions_version_;
-  lists_valid_ = true;
-  return times;
-}
-
-void Simulation::rebuild_ghosts() {
-  auto& P = particles_;
-  ghost_range_ = CellRange::all(geometry_);
-  if (P.distributed()) {
-    ghost_range_ = decomposition_.build_ghosts(P, geometry_);
-    ghost_positions_version_ = positions_version_;
-    lists_valid_ = false;  // the lists' ghost indices name other particles now
-  } else if (check_ghosts_) {
-    copy_particles_as_ghosts();
-    ghost_positions_version_ = positions_version_;
-    lists_valid_ = false;
-  }
-  ghosts_version_ = positions_version_;
-  point_grid_version_ = 0;
-  // The density over the lists is computed afresh (with the ghosts, which are others now).
-  density_version_ = volume_version_ = 0;
-}
-
-// Particle i's ghost is particle n + i, with every field's value: what a distributed run's
-// ghost build carries. The scratch arrays' contents are undefined now (a distributed run's
-// ghosts are other particles than before), so they become NaN.
-void Simulation::copy_particles_as_ghosts() {
-  auto& P = particles_;
-  P.drop_ghosts();
-  const std::size_t n = P.size();
-  P.add_ghosts(std::span<const std::int64_t>(P.ids(), n));
-  for (FieldId f : P.fields())
-    for (int c = 0; c < P.spec(f).components; ++c) {
-      real* values = P.data(f, c);
-      std::copy(values, values + n, values + n);
-    }
-  poison_scratch();
-}
-
-void Simulation::poison_scratch() {
-  for (auto& array : scratch_) {
-    array.resize(particles_.size_with_ghosts());
-    std::fill(array.begin(), array.end(), std::numeric_limits<real>::quiet_NaN());
-  }
-}
-
-const NeighborGrid& Simulation::point_cells() {
-  if (h_ <= 0) throw Error("the kernel radius h is not set (pbf.kernel_radius): a probe has no kernel");
-  auto& P = particles_;
-  place_particles();
-  if (!P.distributed()) {
-    geometry_ = GridGeometry::of(domain_, h_, P.size());
-    ghost_range_ = CellRange::all(geometry_);
-  } else if (ghosts_version_ != positions_version_) {
-    rebuild_ghosts();
-  }
-  // The particles and, in a distributed run, the ghosts (those of check_ghosts() are copies).
-  const std::size_t binned = P.distributed() ? P.size_with_ghosts() : P.size();
-  if (point_grid_version_ != positions_version_ || point_grid_.binned_count() != binned) {
-    point_grid_.bin(P.x(), P.y(), P.z(), binned, geometry_, ghost_range_, P.ids());
-    point_grid_version_ = positions_version_;
-  }
-  return point_grid_;
-}
-
-bool Simulation::measures_at(double x, double y, double z) const {
-  if (!particles_.distributed()) return true;
-  const long cell[3] = {geometry_.cell_along(0, x), geometry_.cell_along(1, y), geometry_.cell_along(2, z)};
-  return decomposition_.owner(cell) == comm::rank();
-}
-
-void Simulation::update_ghosts(std::initializer_list<real*> arrays) {
-  if (particles_.distributed()) {
-    decomposition_.update(std::span<real* const>(arrays.begin(), arrays.size()));
-  } else if (check_ghosts_ && particles_.ghosts() > 0) {  // each copy from its particle
-    const std::size_t n = particles_.size();
-    for (real* values : arrays) std::copy(values, values + n, values + n);
-  }
-}
-
-void Simulation::update_ghost_positions() {
-  if (!has_ghosts() || ghost_positions_version_ == positions_version_) return;
-  update_ghosts({particles_.x(), particles_.y(), particles_.z()});
-  ghost_positions_version_ = positions_version_;
-}
-
 const real* Simulation::solver_density() {
   if (const auto field = particles_.find("density")) return particles_.data(*field);
   refresh_neighbors();
@@ -374,14 +261,16 @@ void Simulation::refresh_density(bool with_volume) {
   const bool volume_current = volume_version_ == density_version_ && volume_.size() == density_.size();
   if (density_current && (volume_current || !with_volume)) return;
   const std::size_t n = particles_.size();
-  const real* m = particles_.mass();
   if (density_current) {  // the volume only
+    const real* m = particles_.mass();
     volume_.resize(density_.size());
     for_particles(density_.size(), [&](std::size_t i) { volume_[i] = m[i] / density_[i]; });
     volume_version_ = density_version_;
     return;
   }
+  // (may rebuild the ghosts, which moves every array: pointers after it)
   if (grid_.particle_count() != particles_.size() || !lists_valid_) refresh_neighbors();
+  const real* m = particles_.mass();
   density_.resize(particles_.size_with_ghosts());
   if (with_volume) volume_.resize(density_.size());
   update_ghost_positions();

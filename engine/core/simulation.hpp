@@ -1,6 +1,8 @@
 #pragma once
 // The simulation: the scene (domain, kernel radius, time step, particles), the pipeline of
 // fixes and computes a script assembles, and the run loop. It knows nothing of Lua.
+// simulation.cpp holds the scene and the pipeline, simulation_neighbors.cpp the neighbour
+// lists and the ghosts (other ranks' particles, periodic images), run_loop*.cpp the run.
 #include <cstdint>
 #include <initializer_list>
 #include <memory>
@@ -15,6 +17,7 @@
 #include "engine/sph/kernels.hpp"
 #include "engine/sph/neighbor_grid.hpp"
 #include "engine/core/particles.hpp"
+#include "engine/core/periodic_images.hpp"
 #include "engine/core/thermo.hpp"
 #include "engine/core/timing.hpp"
 #include "engine/output/output_ledger.hpp"
@@ -63,8 +66,13 @@ class Simulation {
   void set_rest_density(double rho0);
   // Throws when the domain reaches more than 1e6 kernel radii from the origin: positions
   // there cannot resolve h (in single precision they move in steps of 0.1 h), and the
-  // neighbour grid's capped cell count would put the whole fluid in one cell.
+  // neighbour grid's capped cell count would put the whole fluid in one cell; and when a
+  // periodic axis is shorter than 2 h.
   void check_scale() const;
+  // Moves the particles that crossed a periodic face since the last wrap back by one period
+  // (Domain::wrapped): at the top of every step, before migration and reordering, and at a
+  // run's start. Nothing to do without a periodic axis.
+  void wrap_periodic();
   // Steps between reorderings of particle memory along the grid (0: never).
   void set_reorder_interval(int steps) { reorder_every_ = steps; }
 
@@ -188,7 +196,8 @@ class Simulation {
   void place_particles();
   // The ghosts' copies of these arrays (one value per particle, ghosts included) from their
   // owners: a pass calls it for the values it reads at neighbours that changed since the
-  // neighbour stage. A no-op in a run of one process. Collective.
+  // neighbour stage. Positions go through update_ghost_positions (images are shifted). A
+  // no-op in a run of one process without periodic axes. Collective.
   void update_ghosts(std::initializer_list<real*> arrays);
   // The ghosts' positions, when particles moved since they were last sent. Collective.
   void update_ghost_positions();
@@ -238,12 +247,19 @@ class Simulation {
   std::uint64_t point_grid_version_ = 0, ghosts_version_ = 0;
   bool lists_valid_ = false;  // false when the ghosts were rebuilt after the lists
   void rebuild_ghosts();      // at the current positions: returns nothing, sets ghost_range_
-  // The ghosts of check_ghosts(): a copy of every particle, then the scratch arrays poisoned.
+  // The ghosts of check_ghosts(): a copy of every particle, after the images, then the
+  // scratch arrays poisoned.
   void copy_particles_as_ghosts();
   void poison_scratch();
   // Whether the particles have ghosts whose values passes must refresh (a distributed run,
-  // or check_ghosts()).
-  bool has_ghosts() const { return particles_.distributed() || check_ghosts_; }
+  // periodic images, or check_ghosts()).
+  bool has_ghosts() const { return particles_.distributed() || check_ghosts_ || domain_.any_periodic(); }
+  // The copies of check_ghosts() there are (the last ghosts: particle i's is copies_first() + i).
+  std::size_t copies() const {
+    return check_ghosts_ && !particles_.distributed() && particles_.ghosts() > 0 ? particles_.size() : 0;
+  }
+  std::size_t copies_first() const { return particles_.size_with_ghosts() - copies(); }
+  PeriodicImages images_;  // this rank's images of its own particles
   CellRange ghost_range_;
   GridGeometry geometry_;
   Decomposition decomposition_;

@@ -16,15 +16,6 @@ namespace {
 constexpr double kImbalance = 1.1;
 constexpr std::int64_t kBalanceEvery = 20;
 
-CellRange grown(const CellRange& r, const GridGeometry& grid) {  // by one cell, within the grid
-  CellRange g;
-  for (int a = 0; a < 3; ++a) {
-    g.lo[a] = std::max(0L, r.lo[a] - 1);
-    g.hi[a] = std::min(grid.dims[a], r.hi[a] + 1);
-  }
-  return g;
-}
-
 bool overlap(const CellRange& a, const CellRange& b) {
   if (a.empty() || b.empty()) return false;
   for (int k = 0; k < 3; ++k)
@@ -150,13 +141,13 @@ int Decomposition::owner(const long cell[3]) const {
   return tree_[static_cast<std::size_t>(node)].rank;
 }
 
-void Decomposition::pack(const Particles& P, std::size_t i, std::vector<char>& out) const {
+void Decomposition::pack(const Particles& P, std::size_t i, std::vector<char>& out, const Shift& shift) const {
   const std::int64_t id = P.ids()[i];
   const char* bytes = reinterpret_cast<const char*>(&id);
   out.insert(out.end(), bytes, bytes + sizeof id);
   for (FieldId f : fields_)
     for (int c = 0; c < P.spec(f).components; ++c) {
-      const real v = P.data(f, c)[i];
+      const real v = f == Particles::kPosition ? domain_.image(c, P.data(f, c)[i], shift[c]) : P.data(f, c)[i];
       bytes = reinterpret_cast<const char*>(&v);
       out.insert(out.end(), bytes, bytes + sizeof v);
     }
@@ -242,9 +233,24 @@ void Decomposition::migrate(Particles& P, const GridGeometry& grid) {
   load_.mean = static_cast<double>(std::accumulate(all.begin(), all.end(), std::int64_t{0})) / double(all.size());
 }
 
-CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid) {
+namespace {
+// The cells `r` covers `shift` periods away (a cell more on each side along a shifted axis: an
+// image's cell, from its shifted position, may round to the next one).
+CellRange shifted(const CellRange& r, const GridGeometry& grid, const Shift& shift) {
+  CellRange s = r;
+  for (int a = 0; a < 3; ++a)
+    if (shift[a] != 0) {
+      s.lo[a] += shift[a] * grid.dims[a] - 1;
+      s.hi[a] += shift[a] * grid.dims[a] + 1;
+    }
+  return s;
+}
+}  // namespace
+
+CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid, const Domain& domain) {
   Timer timer(seconds_);
   P.drop_ghosts();
+  domain_ = domain;
   const std::size_t n = P.size();
   cells_of(P, grid, n);
   CellRange mine = box_;  // the box, and the cells of particles that left it since the step began
@@ -254,7 +260,8 @@ CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid) {
       mine.lo[a] = std::min(mine.lo[a], cells_[3 * i + a]);
       mine.hi[a] = std::max(mine.hi[a], cells_[3 * i + a] + 1);
     }
-  // Every rank's cells: the peers are the ranks whose cells come within one cell of this one's.
+  // Every rank's cells: the peers are the ranks whose cells come within one cell of this
+  // one's, or of its cells a period away (the same test both ways round: peers agree).
   std::int64_t box[6];
   for (int a = 0; a < 3; ++a) {
     box[a] = mine.lo[a];
@@ -262,6 +269,8 @@ CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid) {
   }
   const std::vector<std::int64_t> boxes = comm::gather_all(std::span<const std::int64_t>(box, 6));
   const int me = comm::rank();
+  std::vector<Shift> shifts = image_shifts(domain);
+  shifts.insert(shifts.begin(), Shift{0, 0, 0});
   peers_.clear();
   std::vector<CellRange> reach;  // each peer's cells, grown by one
   for (int r = 0; r < comm::ranks(); ++r) {
@@ -271,22 +280,29 @@ CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid) {
       theirs.lo[a] = boxes[6 * static_cast<std::size_t>(r) + a];
       theirs.hi[a] = boxes[6 * static_cast<std::size_t>(r) + 3 + a];
     }
-    if (!overlap(grown(theirs, grid), mine)) continue;
+    const CellRange near = grid.grown(theirs);
+    if (!std::any_of(shifts.begin(), shifts.end(), [&](const Shift& s) { return overlap(near, shifted(mine, grid, s)); }))
+      continue;
     peers_.push_back(r);
-    reach.push_back(grown(theirs, grid));
+    reach.push_back(near);
   }
   fields_ = P.fields();
   const std::size_t record = record_size(P, fields_);
   send_index_.resize(peers_.size());
+  send_shift_.resize(peers_.size());
   send_.resize(peers_.size());
+  const real* const x[3] = {P.x(), P.y(), P.z()};
   for (std::size_t k = 0; k < peers_.size(); ++k) {
     send_index_[k].clear();
+    send_shift_[k].clear();
     send_[k].clear();
     for (std::size_t i = 0; i < n; ++i)
-      if (reach[k].contains(&cells_[3 * i])) {
-        send_index_[k].push_back(static_cast<std::uint32_t>(i));
-        pack(P, i, send_[k]);
-      }
+      for (const Shift& s : shifts)
+        if (image_in(domain, grid, reach[k], x, i, s, &cells_[3 * i])) {
+          send_index_[k].push_back(static_cast<std::uint32_t>(i));
+          send_shift_[k].push_back(s);
+          pack(P, i, send_[k], s);
+        }
   }
   comm::exchange(peers_, send_, recv_);
   ghost_first_.resize(peers_.size());
@@ -301,19 +317,21 @@ CellRange Decomposition::build_ghosts(Particles& P, const GridGeometry& grid) {
   ghost_sum_ += static_cast<double>(P.ghosts());
   ++ghost_builds_;
   if (mine.empty()) return CellRange{{0, 0, 0}, {1, 1, 1}};
-  return grown(mine, grid);
+  return grid.grown(mine);
 }
 
-void Decomposition::update(std::span<real* const> arrays) {
+void Decomposition::update(std::span<real* const> arrays, bool positions) {
   if (peers_.empty()) return;
   Timer timer(seconds_);
   const std::size_t A = arrays.size();
   for (std::size_t k = 0; k < peers_.size(); ++k) {
     const auto& index = send_index_[k];
+    const auto& shift = send_shift_[k];
     send_[k].resize(index.size() * A * sizeof(real));
     real* out = reinterpret_cast<real*>(send_[k].data());
     for (std::size_t a = 0; a < A; ++a)
-      for (std::size_t i = 0; i < index.size(); ++i) *out++ = arrays[a][index[i]];
+      for (std::size_t i = 0; i < index.size(); ++i)
+        *out++ = positions ? domain_.image(int(a), arrays[a][index[i]], shift[i][int(a)]) : arrays[a][index[i]];
     recv_[k].resize(ghost_count_[k] * A * sizeof(real));
   }
   comm::exchange_known(peers_, send_, recv_);

@@ -23,12 +23,20 @@
 // whose particles' cells come within one cell of each other, point to point, into buffers that
 // keep their memory from step to step. update() refreshes the ghosts' copies of the arrays a
 // pass is about to read at its neighbours.
+//
+// Along a periodic axis the ghosts include images (engine/core/periodic_images.hpp): a rank
+// sends a peer its particle's image x + s L (s = -1, 0, 1 along each periodic axis, 0 for a
+// plain ghost) when the image's cell lies within one cell of the peer's, by the rule a
+// rank's own images follow, so every rank holds what one process holds near its particles.
+// The sender shifts the positions it sends, at the build and at every refresh of positions.
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "engine/core/domain.hpp"
 #include "engine/core/particles.hpp"
+#include "engine/core/periodic_images.hpp"
 #include "engine/core/real.hpp"
 #include "engine/sph/neighbor_grid.hpp"
 
@@ -52,9 +60,11 @@ class Decomposition {
   // cells (at their current positions; a particle may have left the box since the step began),
   // so that the rank holds every particle near its own and near any point of its box (probes).
   // Returns the cells this rank's grid must cover.
-  CellRange build_ghosts(Particles& P, const GridGeometry& grid);
-  // The ghosts' values of these arrays (one value per particle, ghosts included) from their owners.
-  void update(std::span<real* const> arrays);
+  // With the images of the domain's periodic axes (not this rank's images of its own particles).
+  CellRange build_ghosts(Particles& P, const GridGeometry& grid, const Domain& domain);
+  // The ghosts' values of these arrays (one value per particle, ghosts included) from their
+  // owners; `positions`: the arrays are x, y, z, shifted for images.
+  void update(std::span<real* const> arrays, bool positions = false);
 
   // The rank whose box holds this cell.
   int owner(const long cell[3]) const;
@@ -85,7 +95,7 @@ class Decomposition {
             const std::vector<long>& cells);
   void cells_of(const Particles& P, const GridGeometry& grid, std::size_t n);
   void send_away(Particles& P, const std::vector<int>& destination);
-  void pack(const Particles& P, std::size_t i, std::vector<char>& out) const;
+  void pack(const Particles& P, std::size_t i, std::vector<char>& out, const Shift& shift = {}) const;
 
   std::vector<Node> tree_;
   GridGeometry cut_for_;  // the cells the tree was cut in
@@ -98,6 +108,8 @@ class Decomposition {
   // The ghosts: per peer, the indices of this rank's particles it gets, and where its own land.
   std::vector<int> peers_;
   std::vector<std::vector<std::uint32_t>> send_index_;
+  std::vector<std::vector<Shift>> send_shift_;  // the image each sends (0: the particle)
+  Domain domain_;  // of the last ghost build
   std::vector<std::size_t> ghost_first_, ghost_count_;
   std::vector<std::vector<char>> send_, recv_;       // per peer (ghosts)
   std::vector<std::vector<char>> outgoing_, incoming_;  // per rank (migration)

@@ -19,7 +19,11 @@
 // region behind both faces counts for each); without one, a particle touching a face
 // loses its velocity along it after the velocity update (friction without end), as a
 // no-slip solid's does.
+//
+// A periodic axis of the domain has no walls: its faces are where the fluid goes on (the
+// periodic images, engine/core/periodic_images.hpp), so the box walls only the other axes.
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -67,8 +71,12 @@ class Box : public Fix, public DensityBoundary {
     auto& P = sim.particles();
     const Domain& d = sim.domain();
     real *x = P.x(), *y = P.y(), *z = P.z();
-    const real lo[3] = {real(d.lo[0] + contact_), real(d.lo[1] + contact_), real(d.lo[2] + contact_)};
-    const real hi[3] = {real(d.hi[0] - contact_), real(d.hi[1] - contact_), real(d.hi[2] - contact_)};
+    constexpr real kOpen = std::numeric_limits<real>::infinity();  // a periodic axis: no clamping
+    real lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = d.periodic[a] ? -kOpen : real(d.lo[a] + contact_);
+      hi[a] = d.periodic[a] ? kOpen : real(d.hi[a] - contact_);
+    }
     auto clamp = [](real v, real a, real b) { return v < a ? a : (v > b ? b : v); };
     for_particles(P.size(), [&](std::size_t i) {
       x[i] = clamp(x[i], lo[0], hi[0]);
@@ -87,6 +95,7 @@ class Box : public Fix, public DensityBoundary {
     const bool bounce = restitution_ > 0;
     for_particles(P.size(), [&](std::size_t i) {
       for (int a = 0; a < 3; ++a) {
+        if (d.periodic[a]) continue;
         // side: -1 touching the lower face, +1 the upper one; a clamped position is exact.
         const int side = x[a][i] <= real(d.lo[a] + contact_) ? -1 : (x[a][i] >= real(d.hi[a] - contact_) ? 1 : 0);
         if (side == 0) continue;
@@ -105,7 +114,7 @@ class Box : public Fix, public DensityBoundary {
     contact_ = contact_spacings_ * spacing;
     const Domain& d = sim.domain();
     for (int a = 0; a < 3; ++a)
-      if (2 * contact_ >= d.extent(a))
+      if (!d.periodic[a] && 2 * contact_ >= d.extent(a))
         throw Error(fmt::format("contact_distance = {} spacings ({:.3g} m) leaves no room across the domain ({:.3g} m "
                                 "along {})", contact_spacings_, contact_, d.extent(a), "xyz"[a]));
   }
@@ -136,6 +145,10 @@ class Box : public Fix, public DensityBoundary {
     real outside = 1;  // prod_k (1 - f_k)
     bool near = false;
     for (int a = 0; a < 3; ++a) {
+      if (d.periodic[a]) {
+        f[2 * a] = f[2 * a + 1] = df[2 * a] = df[2 * a + 1] = 0;
+        continue;
+      }
       const real to_lo = p[a] - real(d.lo[a]), to_hi = real(d.hi[a]) - p[a];
       f[2 * a] = to_lo + wall_.delta() < h ? wall_.fraction(to_lo, df[2 * a]) : (df[2 * a] = 0, real(0));
       f[2 * a + 1] = to_hi + wall_.delta() < h ? wall_.fraction(to_hi, df[2 * a + 1]) : (df[2 * a + 1] = 0, real(0));

@@ -28,6 +28,7 @@
 // the fluid keeps no velocity into the wall relative to it, and friction acts on the
 // (The class is in solid.hpp; its construction, map, scene and restart state in solid_setup.cpp.)
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -127,10 +128,15 @@ void SolidFix::constraint(Simulation& sim, int) {
   const std::size_t n = P.size();
   std::size_t lost = n;
   // A solid touching a face of the domain (a ramp on the floor) may push a particle at its
-  // foot across that face; the domain stays the hard limit.
+  // foot across that face; the domain stays the hard limit (but along a periodic axis, whose
+  // faces a particle crosses to come back at the other side).
   const Domain& dom = sim.domain();
-  const real lo[3] = {real(dom.lo[0]), real(dom.lo[1]), real(dom.lo[2])};
-  const real hi[3] = {real(dom.hi[0]), real(dom.hi[1]), real(dom.hi[2])};
+  constexpr real kOpen = std::numeric_limits<real>::infinity();
+  real lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = dom.periodic[a] ? -kOpen : real(dom.lo[a]);
+    hi[a] = dom.periodic[a] ? kOpen : real(dom.hi[a]);
+  }
   // Under an integrator of positions (pbf) a projection changes the velocity by dx / dt:
   // the wall takes m dx / dt. (A leapfrog's velocities are corrected in velocity_update.)
   const Fix* integrator = sim.integrator();

@@ -129,10 +129,17 @@ void check_range(const std::string& what, const ParamSpec& spec, const ParamValu
   if (auto* v = std::get_if<Points>(&value))
     for (const auto& point : *v)
       for (double c : point) check(c);
-  if (auto* text = std::get_if<std::string>(&value);
-      text && !spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), *text) == spec.choices.end())
-    throw Error(fmt::format("{}: parameter '{}' must be one of {}, got \"{}\"{}", what, spec.name, spec.allowed(), *text,
-                            did_you_mean(*text, spec.choices)));
+  auto check_choice = [&](const std::string& text) {
+    if (spec.choices.empty() || std::find(spec.choices.begin(), spec.choices.end(), text) != spec.choices.end()) return;
+    if (spec.type == ParamType::StringList)
+      throw Error(fmt::format("{}: parameter '{}' names \"{}\", which is not one of {}{}", what, spec.name, text,
+                              spec.allowed(), did_you_mean(text, spec.choices)));
+    throw Error(fmt::format("{}: parameter '{}' must be one of {}, got \"{}\"{}", what, spec.name, spec.allowed(), text,
+                            did_you_mean(text, spec.choices)));
+  };
+  if (auto* text = std::get_if<std::string>(&value)) check_choice(*text);
+  if (auto* names = std::get_if<Names>(&value))
+    for (const std::string& text : *names) check_choice(text);
 }
 
 }  // namespace

@@ -97,7 +97,7 @@ MassEstimate file_mass(Simulation& sim, std::int64_t first_id, std::int64_t end_
   auto away_from_faces = [&](std::size_t i) {
     const double p[3] = {x[i], y[i], z[i]};
     for (int a = 0; a < 3; ++a)
-      if (p[a] - domain.lo[a] < h || domain.hi[a] - p[a] < h) return false;
+      if (!domain.periodic[a] && (p[a] - domain.lo[a] < h || domain.hi[a] - p[a] < h)) return false;
     return true;
   };
   // Each of the file's particles: its neighbours from the file, and the nearest one's distance

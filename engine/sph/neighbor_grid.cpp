@@ -34,22 +34,43 @@ std::size_t NeighborGrid::max_cells(std::size_t n) { return std::max<std::size_t
 GridGeometry GridGeometry::of(const Domain& domain, double h, std::size_t particles) {
   // Cells at least h wide; widen them when the box would need more cells than the cap.
   // Counted in double until they fit: a huge domain over a tiny h must not overflow a long.
-  GridGeometry g;
-  g.cell_size = h;
+  double size = h;
   const double cap = static_cast<double>(NeighborGrid::max_cells(particles));
-  auto cells_along = [&](int a) { return std::max(1.0, std::ceil(domain.extent(a) / g.cell_size)); };
+  auto cells_along = [&](int a) { return std::max(1.0, std::ceil(domain.extent(a) / size)); };
   for (;;) {
     const double total = cells_along(0) * cells_along(1) * cells_along(2);
     if (total <= cap) break;
-    g.cell_size *= std::max(1.01, std::cbrt(total / cap));  // an infinite total ends in one cell
+    size *= std::max(1.01, std::cbrt(total / cap));  // an infinite total ends in one cell
   }
-  for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<long>(cells_along(a));
-  for (int a = 0; a < 3; ++a) g.lo[a] = domain.lo[a];
+  GridGeometry g;
+  for (int a = 0; a < 3; ++a) {
+    g.lo[a] = domain.lo[a];
+    g.periodic[a] = domain.periodic[a];
+    g.dims[a] = static_cast<long>(cells_along(a));
+    g.cell_size[a] = size;
+    if (domain.periodic[a]) {  // whole cells over the period, two at least (the period is 2 h or more)
+      g.dims[a] = std::max(2L, static_cast<long>(std::floor(domain.extent(a) / size)));
+      g.cell_size[a] = domain.extent(a) / static_cast<double>(g.dims[a]);
+    }
+  }
   return g;
 }
 
 long GridGeometry::cell_along(int axis, double coordinate) const {
-  return clamp_cell(coordinate, lo[axis], cell_size, dims[axis]);
+  if (!periodic[axis]) return clamp_cell(coordinate, lo[axis], cell_size[axis], dims[axis]);
+  const long n = dims[axis];
+  const double c = std::floor((coordinate - lo[axis]) / cell_size[axis]);
+  if (!(c == c)) return 0;
+  return static_cast<long>(std::clamp(c, double(-n - 2), double(2 * n + 1)));
+}
+
+CellRange GridGeometry::grown(const CellRange& r) const {
+  CellRange g;
+  for (int a = 0; a < 3; ++a) {
+    g.lo[a] = periodic[a] ? r.lo[a] - 1 : std::max(0L, r.lo[a] - 1);
+    g.hi[a] = periodic[a] ? r.hi[a] + 1 : std::min(dims[a], r.hi[a] + 1);
+  }
+  return g;
 }
 
 std::size_t NeighborGrid::cell_of(real x, real y, real z) const {
@@ -139,9 +160,10 @@ void NeighborGrid::order_cells_by(const std::int64_t* key) {
   for (std::size_t c = 0; c < ncells; ++c) order_cell(c, key);
 }
 
-void NeighborGrid::offset_neighbors(std::uint32_t by) {
+void NeighborGrid::offset_neighbors(std::uint32_t below, std::uint32_t by) {
   for_particles(particle_count(), [&](std::size_t i) {
-    for (std::uint32_t k = offset_[i]; k < offset_[i + 1]; ++k) list_[k] += by;
+    for (std::uint32_t k = offset_[i]; k < offset_[i + 1]; ++k)
+      if (list_[k] < below) list_[k] += by;
   });
 }
 

@@ -8,7 +8,10 @@
 //
 // Positions outside the domain fall into the edge cells (clamping keeps any two points
 // closer than h in the same or adjacent cells), and the cell count is capped, so memory
-// follows the particle count, not the box volume over h^3. Neighbour order is fixed
+// follows the particle count, not the box volume over h^3. Along a periodic axis the cells
+// tile the period exactly (L / floor(L / size) wide, at least two of them) and are not
+// clamped: the periodic images (ghosts at x +/- L) fall into the cells beyond the faces,
+// the same cells on every rank. Neighbour order is fixed
 // (the 3 x 3 x 3 cells in a fixed order, ascending index within a cell): the lists, and everything
 // summed over them, are the same at any thread count. The engine orders each cell's particles
 // by id (order_cells_by) before it builds lists, so a list's order depends on the particles'
@@ -26,29 +29,38 @@ namespace pbf {
 
 struct CellSearch;  // engine/sph/neighbor_search_simd.hpp
 
+struct GridGeometry;
+
+// A box of cells [lo, hi) along each axis.
+struct CellRange {
+  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  static CellRange all(const GridGeometry& g);
+  bool empty() const { return hi[0] <= lo[0] || hi[1] <= lo[1] || hi[2] <= lo[2]; }
+  bool contains(const long c[3]) const {
+    return c[0] >= lo[0] && c[0] < hi[0] && c[1] >= lo[1] && c[1] < hi[1] && c[2] >= lo[2] && c[2] < hi[2];
+  }
+};
+
 // The cells of the whole domain, at least h wide, widened when the domain would need more
 // than max_cells(particles). A distributed run gives every rank the same geometry (from the
 // particle count of all ranks), so that a particle's neighbours come in the same order
 // whichever rank lists them.
 struct GridGeometry {
   double lo[3] = {0, 0, 0};
-  double cell_size = 1;
-  long dims[3] = {1, 1, 1};
+  double cell_size[3] = {1, 1, 1};  // along each axis (equal, but along a periodic one)
+  long dims[3] = {1, 1, 1};          // cells [0, dims) cover the domain
+  bool periodic[3] = {false, false, false};
   static GridGeometry of(const Domain& domain, double h, std::size_t particles);
-  // The cell along `axis` of a coordinate, clamped into the grid (NaN: cell 0).
+  // The cell along `axis` of a coordinate, clamped into the grid (NaN: cell 0); along a
+  // periodic axis not clamped to the grid, only to [-dims - 2, 2 dims + 2) (positions lie
+  // within a period of the faces: images, particles that crossed a face in this step).
   long cell_along(int axis, double coordinate) const;
+  // The cells within one cell of `r`: clamped into the grid, but along a periodic axis.
+  CellRange grown(const CellRange& r) const;
   bool operator==(const GridGeometry&) const = default;
 };
 
-// A box of cells [lo, hi) along each axis.
-struct CellRange {
-  long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  static CellRange all(const GridGeometry& g) { return {{0, 0, 0}, {g.dims[0], g.dims[1], g.dims[2]}}; }
-  bool empty() const { return hi[0] <= lo[0] || hi[1] <= lo[1] || hi[2] <= lo[2]; }
-  bool contains(const long c[3]) const {
-    return c[0] >= lo[0] && c[0] < hi[0] && c[1] >= lo[1] && c[1] < hi[1] && c[2] >= lo[2] && c[2] < hi[2];
-  }
-};
+inline CellRange CellRange::all(const GridGeometry& g) { return {{0, 0, 0}, {g.dims[0], g.dims[1], g.dims[2]}}; }
 
 class NeighborGrid {
  public:
@@ -65,9 +77,9 @@ class NeighborGrid {
   // Builds the lists of neighbours j != i with |x_i - x_j|^2 < h^2 of the particles i < listed
   // (all of them by default; a rank lists its own particles, whose neighbours include ghosts).
   void build_lists(const real* x, const real* y, const real* z, double h, std::size_t listed = SIZE_MAX);
-  // Adds `by` to every index in the lists: they then name the particles' copies placed `by`
-  // further on (Simulation::set_check_ghosts).
-  void offset_neighbors(std::uint32_t by);
+  // Adds `by` to every index below `below` in the lists: they then name the particles'
+  // copies placed `by` further on (Simulation::set_check_ghosts).
+  void offset_neighbors(std::uint32_t below, std::uint32_t by);
 
   // The lists are followed by this many valid indices (0), so that a vector loop may load a
   // whole vector of indices past the end of a list and mask the extra lanes.
@@ -98,7 +110,6 @@ class NeighborGrid {
   const GridGeometry& geometry() const { return geometry_; }
   const CellRange& range() const { return range_; }
   const std::uint32_t* cell_starts() const { return cell_start_.data(); }
-  double cell_size() const { return geometry_.cell_size; }
   double mean_neighbors() const;
   // Whether the last build_lists took one pass (the lists fitted where the build before said).
   bool built_in_one_pass() const { return one_pass_; }

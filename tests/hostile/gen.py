@@ -742,6 +742,22 @@ def gen_lua_rules(g):
         scene + pipe + ['pbf.unfix("pbf")', 'pbf.fix("pbf", "pbf", {iterations = 2})', "pbf.run(1)"],
         "accepted", "line")
 
+    g.section("Periodic axes (issue 32): an axis that is not x, y or z, a name that is no string, a period "
+              "shorter than two kernel radii (the domain set before h, or after it); a periodic scene runs.")
+    periodic = ["pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}, periodic = {\"x\", \"y\"}}"] + scene[1:]
+    add("periodic_axis_unknown", "periodic = {\"w\"}: refused, naming the parameter and the name",
+        ['@pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}, periodic = {"x", "w"}}'], "refused", "line",
+        "'periodic' names \"w\"")
+    add("periodic_axis_number", "periodic = {1}: refused (a list of names)",
+        ['@pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}, periodic = {1}}'], "refused", "line", "periodic")
+    add("periodic_short_h_after", "a period of 0.1 m, then h = 0.06 m (2 h = 0.12 m): refused at pbf.kernel_radius",
+        [periodic[0], "@pbf.kernel_radius(0.06)"], "refused", "line", "periodic axis x")
+    add("periodic_short_domain_after", "h = 0.02 m, then a period of 0.03 m along y: refused at pbf.domain",
+        ["pbf.kernel_radius(0.02)", '@pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.03, 0.1}, periodic = {"y"}}'],
+        "refused", "line", "periodic axis y")
+    add("periodic_runs", "a block in a box periodic along x and y, the box walls on z only: legal",
+        periodic + pipe + ["pbf.run(5)"], "accepted", "line")
+
     g.section("Runs too long to make: more than 1e9 steps refused, more than 1e7 warned (a callback stops "
               "them at step 1, so nothing long runs), a step that vanishes against the time.")
     add("steps_run_2e9", "pbf.run of 2e9 steps: refused before the first step",

@@ -16,6 +16,13 @@ Cases:
   identical_solid  scenarios/spheric_dambreak.lua at 5 cm (PBF, the box obstacle across the
               ranks' boundaries, its load in thermo, pressure probes and gauges): probes.csv and
               thermo.csv.
+  identical_periodic  tests/mpi/periodic.lua, a dam break in a tank periodic along x and y
+              (the column spreads through the faces and meets itself), on 1 process and 2, 3 and
+              4 ranks: every text frame, probes.csv (probes and gauges beside the periodic faces)
+              and thermo.csv have the same bytes (images cross the faces as ghosts); a restart
+              written on 3 ranks at step 150 (particles beyond the faces x = 0, x = 0.8, y = 0 and
+              y = 0.2 at that step's end, measured), continued on 2 and on 1,
+              writes the later frames of the run that never stopped.
   sources     tests/mpi/sources.lua: particle files (.csv, and a .vtu frame), lattices (two on the same sites, one in a
               sphere), solids that leave particles out before the first run and after it, a
               lattice added between runs: every rank creates a share of each (about 1/ranks of
@@ -149,6 +156,31 @@ def identical(args, work):
     print(f"{len(frames)} frames, probes.csv, thermo.csv and the VTK frames' rows identical at 1, 2, 3 and 4 ranks; "
           f"front at x = "
           f"{farthest:.3f} m")
+
+
+def identical_periodic(args, work):
+    out, frames = same_outputs(args, work, os.path.join(HERE, "periodic.lua"), {}, ["thermo.csv", "probes.csv"],
+                               rank_counts=(1, 2, 3, 4))
+    # The fluid went through the faces: particles on both sides of x = 0 (the column starts in 0.2 < x < 0.5).
+    with open(os.path.join(out, frames[-1])) as f:
+        xs = [float(line.split()[1]) for line in f if line[0].isdigit() and " " in line]
+    if not (min(xs) < 0.05 and max(xs) > 0.75):
+        fail(f"the fluid spans x = {min(xs)} .. {max(xs)}: it did not reach the periodic faces")
+    saved = os.path.join(work, "at150.restart")
+    script = os.path.join(HERE, "periodic.lua")
+    for ranks, variables in ((3, {"out": os.path.join(work, "first"), "steps": 150, "save": saved}),
+                             (2, {"out": os.path.join(work, "on2"), "read": saved}),
+                             (1, {"out": os.path.join(work, "on1"), "read": saved})):
+        result = run(args, ranks, script, variables, work)
+        if result.returncode != 0:
+            fail(f"{ranks} rank(s) with {variables}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+    later = [f"f_{k:05d}.txt" for k in (4, 5)]  # steps 160, 200
+    for name in later:
+        for where in ("on2", "on1"):
+            if not filecmp.cmp(os.path.join(out, name), os.path.join(work, where, name), shallow=False):
+                fail(f"{name} of the periodic run continued {where} differs from the run that never stopped")
+    print(f"periodic x and y: {len(frames)} frames, probes.csv and thermo.csv identical at 1, 2, 3 and 4 ranks; "
+          f"a restart written on 3 ranks, continued on 2 and on 1: {', '.join(later)} identical")
 
 
 def identical_flow(args, work):
@@ -449,7 +481,7 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_flow", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
+                        choices=["identical", "identical_flow", "identical_periodic", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
                                  "script_error",
                                  "rank_error", "per_particle", "signals"])
     args = parser.parse_args()
