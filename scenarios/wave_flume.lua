@@ -26,7 +26,12 @@
 -- (default "continuity"), diffusion (default 0) and negative_pressure (wcsph's), iterations,
 -- error, max_iterations, one_sided and xsph (pbf's, default 4 iterations, one-sided, XSPH on),
 -- out (directory, default "out"; the gauges go to out/gauges.csv); images, movie and vtk as in
--- every scenario.
+-- every scenario. For reflections: length (m, default 6: the flume's length), beach (default
+-- true; false ends the flume in a vertical wall at x = length), damping (m, default none: a
+-- damping zone over the flume's last `damping` metres), damping_rate (1/s, the `damping` fix's
+-- default 10) and gauges (a list of x in m, default 0.6,1.0,1.5).
+-- share/validation/flume_reflection.py measures the reflected wave with and without a damping
+-- zone (docs/validation/flume_reflection.md).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local g = 9.81
@@ -39,7 +44,7 @@ local t_end = var.t_end or 9
 local out = var.out or "out"
 local solver = var.solver or "wcsph"
 assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
-local L, top = 6.0, 2 * d              -- the flume, and the domain's height
+local L, top = var.length or 6.0, 2 * d  -- the flume, and the domain's height
 local back = 0.1                       -- room behind the paddle's face (x < 0)
 local h = (var.support or 2.5) * s   -- the kernel's radius
 -- A small step: at 8 times this one PBF's waves lost a further fifth of their height (0.02 m).
@@ -75,10 +80,23 @@ end
 -- It reaches beyond the domain's side walls, floor and top, so that no face of it lies along a
 -- domain face (a particle in such a corner would be pushed out along the wrong face).
 pbf.fix("paddle", "solid", {shape = "box", lo = {-back - S, -h, -h}, hi = {0, W + h, top + h}, motion = paddle})
--- The beach: a plane rising 1 in 4 from the floor at x = 4.5 m (the fluid above it).
-pbf.fix("beach", "solid", {shape = "plane", point = {4.5, 0, 0}, normal = {-1, 0, 4}, friction = 20})
+-- The beach: a plane rising 1 in 4 from the floor at x = 4.5 m (the fluid above it); with
+-- -v beach=false the flume ends in the domain's vertical wall at x = L instead.
+if require("flag")(var.beach, true, "beach") then
+  pbf.fix("beach", "solid", {shape = "plane", point = {4.5, 0, 0}, normal = {-1, 0, 4}, friction = 20})
+end
+-- An optional damping zone (DualSPHysics's) over the last `damping` metres of the flume: the
+-- velocities relax at up to `damping_rate` per second, growing as the square of the distance
+-- from x = L - damping to x = L (fix `damping`). Off unless given: the beach already absorbs.
+if var.damping and var.damping > 0 then
+  pbf.fix("absorber", "damping", {from = {L - var.damping, 0, 0}, to = {L, 0, 0}, rate = var.damping_rate})
+end
 
-local stations = {0.6, 1.0, 1.5}
+-- The gauges: x = 0.6, 1 and 1.5 m, or those listed in -v gauges=X1,X2,... (m).
+local stations = {}
+for x in tostring(var.gauges or "0.6,1.0,1.5"):gmatch("[^,%s]+") do
+  stations[#stations + 1] = assert(tonumber(x), "gauges must be a list of x positions (m), like 0.6,1.0,1.5")
+end
 local feet, labels = {}, {}
 for k, x in ipairs(stations) do
   feet[k] = {x, 0.5 * W, 0}
@@ -91,5 +109,5 @@ pbf.fix("gauges", "sample", {computes = {"eta"}, interval = 0.01, file = out .. 
 require("outputs").add(out, {color = "speed", min = 0, max = 0.3, direction = {0, 1, -0.12}, center = {1.45, 0.5 * W, 0.3},
                              zoom = 4, width = 1600, height = 480})
 pbf.compute("v", "speed")
-pbf.thermo{every = math.max(1, math.floor(0.25 / dt)), columns = {"step", "time", "v.max", "eta.x060", "eta.x100"}}
+pbf.thermo{every = math.max(1, math.floor(0.25 / dt)), columns = {"step", "time", "v.max", "eta." .. labels[1], "eta." .. labels[math.min(2, #labels)]}}
 pbf.run_until(t_end)

@@ -232,3 +232,52 @@ TEST(Outflow, ADrainedSceneRunsOnAndItsRestartReadsBack) {
   EXPECT_EQ(back.global_count(), 0u);
   EXPECT_EQ(back.particles().next_id(), 800);
 }
+
+// A box with an open face: the block moving at 0.5 m/s along x leaves through x+ (no wall
+// holds it back, none counts in its density), the particles beyond it leave the run at the
+// next step's start, and initial = present + left holds; the other faces stay walls.
+TEST(OpenFace, TheFluidLeavesThroughItAndTheOthersStayWalls) {
+  const auto dir = temp_dir("open-face");
+  Pipeline p = pipeline("PbfVorticityXsph", dir.path() / "out");
+  for (auto& f : p.fixes)
+    if (f.style == "box") f.params = {{"open", Names{"x+"}}};
+  p.computes.push_back({"left", "flow", {{"fix", std::string("walls")}}});
+  Simulation sim;
+  make_scene(sim, p.dt);
+  add(sim, p);
+  const double initial_mass = mass_present(sim);
+  std::size_t beyond_before = 0;
+  for (int step = 0; step < 150; ++step) {
+    const auto before = positions_by_id(sim);
+    sim.run(1);
+    const auto after = positions_by_id(sim);
+    for (const auto& [id, x] : before)  // beyond the face after a step: gone after the next
+      ASSERT_EQ(after.count(id), x[0] > real(0.2) ? 0u : 1u) << "particle " << id << ", step " << step;
+    for (const auto& [id, x] : after) {
+      beyond_before += x[0] > real(0.2);
+      ASSERT_GE(x[2], real(0.005) - real(1e-6)) << "the floor holds";  // the contact distance, half a spacing
+      ASSERT_GE(x[0], real(0.005) - real(1e-6)) << "the back wall holds";
+    }
+  }
+  EXPECT_GT(beyond_before, 100u);
+  const double left = flow_value(sim, "left", 0);
+  EXPECT_EQ(sim.particles().size() + static_cast<std::size_t>(left), 800u);
+  EXPECT_NEAR(mass_present(sim) + flow_value(sim, "left", 1), initial_mass, 3 * 0x1p-53 * initial_mass);
+}
+
+TEST(OpenFace, AFaceNamedTwiceOrOnAPeriodicAxisIsRefused) {
+  const auto& styles = StyleRegistry::builtin();
+  EXPECT_ERROR_NAMING(styles.make_fix("walls", "box", {{"open", Names{"x+", "x+"}}}), "parameter 'open'", "twice");
+  EXPECT_ERROR_NAMING(styles.make_fix("walls", "box", {{"open", Names{"w+"}}}), "'open'", "\"w+\"");
+  Simulation sim;
+  Domain d{{0, 0, 0}, {0.2, 0.1, 0.2}};
+  d.periodic[1] = true;
+  sim.set_domain(d);
+  sim.set_kernel_radius(0.02);
+  sim.set_timestep(0.002);
+  const double lo[3] = {0, 0, 0}, hi[3] = {0.1, 0.1, 0.08}, v[3] = {0, 0, 0};
+  add_lattice(sim, lo, hi, 0.01, v);
+  sim.add_fix(styles.make_fix("pbf", "pbf", {}));
+  sim.add_fix(styles.make_fix("walls", "box", {{"open", Names{"y-"}}}));
+  EXPECT_ERROR_NAMING(sim.run(1), "parameter 'open'", "axis y is periodic");
+}

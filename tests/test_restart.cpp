@@ -203,9 +203,13 @@ TEST(Restart, DamagedFilesAreClearErrors) {
   const std::size_t periodic_at = 32 + 6 * 8 + 3 * 8 + 3 * 8;  // after domain, h/dt/rho0 and the clock
   const std::size_t next_id_at = periodic_at + 4, count_at = next_id_at + 8;
   bytes = good;
-  put_u32(bytes, periodic_at, 8);  // an axis beyond z
+  put_u32(bytes, periodic_at, 1u << 9);  // a face beyond z+
   fix_checksum(bytes);
-  expect_rejected(dir, bytes, "the periodic axes (0x8) are damaged");
+  expect_rejected(dir, bytes, "the periodic axes and open faces (0x200) are damaged");
+  bytes = good;
+  put_u32(bytes, periodic_at, 1u | 1u << 3);  // x periodic and its lower face open
+  fix_checksum(bytes);
+  expect_rejected(dir, bytes, "the periodic axes and open faces (0x9) are damaged");
 
   bytes = good;
   put_u64(bytes, next_id_at, 124);  // fewer ids ever given than particles saved

@@ -2,6 +2,7 @@
 // A fix is one style instance in the step pipeline (LAMMPS's word): it names the stages
 // it joins and implements a hook for each. The run loop calls and times the hooks; a fix
 // never times itself.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -76,6 +77,8 @@ class Fix {
   // The mass of each particle this fix creates during a run (an emitter's; 0: it creates
   // none): a scene that starts empty takes its constants from it (Simulation::particle_mass).
   virtual double created_mass(const Simulation&) const { return 0; }
+  // The domain's faces this fix leaves open (the box fix's `open`): x-, x+, y-, y+, z-, z+.
+  virtual std::array<bool, 6> open_faces() const { return {}; }
   // Whether this fix removes a particle at q (a sink's region), so that an emitter can refuse
   // an opening a sink would empty as it fills.
   virtual bool removes_at(const real /*q*/[3]) const { return false; }

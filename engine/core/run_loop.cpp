@@ -30,6 +30,13 @@ void Simulation::run_until(double time) {
 
 void RunLoop::prepare() {
   auto& P = sim_.particles_;
+  // The faces particles may leave through are the walls' fix's (none without one).
+  bool open[6] = {false, false, false, false, false, false};
+  for (const auto& f : sim_.fixes_) {
+    const std::array<bool, 6> faces = f->open_faces();
+    for (std::size_t k = 0; k < 6; ++k) open[k] = open[k] || faces[k];
+  }
+  std::copy(open, open + 6, sim_.domain_.open);
   sim_.wrap_periodic();  // a scene made or read with particles beyond a periodic face
   sim_.check_inside_domain();
   sim_.collect_boundaries();

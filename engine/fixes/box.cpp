@@ -20,6 +20,10 @@
 // loses its velocity along it after the velocity update (friction without end), as a
 // no-slip solid's does.
 //
+// An open face (`open`, e.g. {"x+"}) has no wall either: particles that cross it leave the
+// run at the next step's start (the exchange stage), counted for the `flow` compute; the
+// domain holds them beyond it until then (engine/core/domain.hpp).
+//
 // A periodic axis of the domain has no walls: its faces are where the fluid goes on (the
 // periodic images, engine/core/periodic_images.hpp), so the box walls only the other axes.
 #include <cmath>
@@ -30,6 +34,8 @@
 
 #include "engine/sph/density_boundary.hpp"
 #include "engine/core/error.hpp"
+#include "engine/core/particle_flow.hpp"
+#include "engine/io/bytes.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
@@ -49,11 +55,44 @@ class Box : public Fix, public DensityBoundary {
         friction_(p.real("friction")),
         wall_density_(p.boolean("wall_density")),
         no_slip_(p.boolean("no_slip")),
-        contact_spacings_(p.real("contact_distance")) {}
+        contact_spacings_(p.real("contact_distance")) {
+    const Names& open = p.names("open");
+    for (const std::string& face : open) {
+      const int f = 2 * (face[0] - 'x') + (face[1] == '+');
+      if (open_[f]) throw Error(fmt::format("parameter 'open' names face \"{}\" twice", face));
+      open_[f] = true;
+      any_open_ = true;
+    }
+  }
 
   std::vector<Stage> stages() const override {
-    if (restitution_ > 0) return {Stage::predict, Stage::constraints, Stage::velocity_update};
-    return {Stage::constraints, Stage::velocity_update};
+    std::vector<Stage> stages;
+    if (any_open_) stages.push_back(Stage::exchange);
+    if (restitution_ > 0) stages.push_back(Stage::predict);
+    stages.insert(stages.end(), {Stage::constraints, Stage::velocity_update});
+    return stages;
+  }
+  const ParticleFlow* particle_flow() const override { return any_open_ ? &left_ : nullptr; }
+  std::array<bool, 6> open_faces() const override {
+    std::array<bool, 6> faces;
+    std::copy(open_, open_ + 6, faces.begin());
+    return faces;
+  }
+
+  // The particles beyond an open face leave.
+  void exchange(Simulation& sim) override {
+    auto& P = sim.particles();
+    const Domain& d = sim.domain();
+    drop_.assign(P.size(), 0);
+    for (std::size_t i = 0; i < P.size(); ++i) drop_[i] = d.beyond_open_face(P.x()[i], P.y()[i], P.z()[i]);
+    left_.count_marked(P, drop_);
+    P.remove(drop_);
+  }
+  void save_state(ByteWriter& w) const override {
+    if (any_open_) left_.save(w);
+  }
+  void restore_state(ByteReader& r) override {
+    if (any_open_) left_.restore(r);
   }
   Role role() const override { return Role::boundary; }
   bool runs_distributed() const override { return true; }  // each particle on its own
@@ -73,9 +112,9 @@ class Box : public Fix, public DensityBoundary {
     real *x = P.x(), *y = P.y(), *z = P.z();
     constexpr real kOpen = std::numeric_limits<real>::infinity();  // a periodic axis: no clamping
     real lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = d.periodic[a] ? -kOpen : real(d.lo[a] + contact_);
-      hi[a] = d.periodic[a] ? kOpen : real(d.hi[a] - contact_);
+    for (int a = 0; a < 3; ++a) {  // (an open face: none either)
+      lo[a] = d.periodic[a] || open_[2 * a] ? -kOpen : real(d.lo[a] + contact_);
+      hi[a] = d.periodic[a] || open_[2 * a + 1] ? kOpen : real(d.hi[a] - contact_);
     }
     auto clamp = [](real v, real a, real b) { return v < a ? a : (v > b ? b : v); };
     for_particles(P.size(), [&](std::size_t i) {
@@ -98,7 +137,7 @@ class Box : public Fix, public DensityBoundary {
         if (d.periodic[a]) continue;
         // side: -1 touching the lower face, +1 the upper one; a clamped position is exact.
         const int side = x[a][i] <= real(d.lo[a] + contact_) ? -1 : (x[a][i] >= real(d.hi[a] - contact_) ? 1 : 0);
-        if (side == 0) continue;
+        if (side == 0 || open_[2 * a + (side > 0)]) continue;
         const real arriving = bounce ? incoming_[a][i] : v[a][i];
         if (arriving * side > 0) v[a][i] = -e * arriving;  // moving into the wall
         v[(a + 1) % 3][i] *= keep;
@@ -113,6 +152,11 @@ class Box : public Fix, public DensityBoundary {
     const double spacing = lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
     contact_ = contact_spacings_ * spacing;
     const Domain& d = sim.domain();
+    for (int a = 0; a < 3; ++a)
+      if (d.periodic[a] && (open_[2 * a] || open_[2 * a + 1]))
+        throw Error(fmt::format("parameter 'open': axis {} is periodic, so its faces are neither walls nor open (the "
+                                "fluid goes on across them)",
+                                "xyz"[a]));
     for (int a = 0; a < 3; ++a)
       if (!d.periodic[a] && 2 * contact_ >= d.extent(a))
         throw Error(fmt::format("contact_distance = {} spacings ({:.3g} m) leaves no room across the domain ({:.3g} m "
@@ -130,7 +174,8 @@ class Box : public Fix, public DensityBoundary {
     const Domain& d = sim.domain();
     for (int a = 0; a < 3; ++a) {
       if (d.periodic[a]) continue;  // no walls across a periodic axis
-      const real share = viscous_.share(q[a] - real(d.lo[a])) + viscous_.share(real(d.hi[a]) - q[a]);
+      const real share = (open_[2 * a] ? real(0) : viscous_.share(q[a] - real(d.lo[a]))) +
+                         (open_[2 * a + 1] ? real(0) : viscous_.share(real(d.hi[a]) - q[a]));
       if (share == 0) continue;
       pull[(a + 1) % 3] -= share * v[(a + 1) % 3];  // along the faces: the walls are at rest
       pull[(a + 2) % 3] -= share * v[(a + 2) % 3];
@@ -150,8 +195,9 @@ class Box : public Fix, public DensityBoundary {
         continue;
       }
       const real to_lo = p[a] - real(d.lo[a]), to_hi = real(d.hi[a]) - p[a];
-      f[2 * a] = to_lo + wall_.delta() < h ? wall_.fraction(to_lo, df[2 * a]) : (df[2 * a] = 0, real(0));
-      f[2 * a + 1] = to_hi + wall_.delta() < h ? wall_.fraction(to_hi, df[2 * a + 1]) : (df[2 * a + 1] = 0, real(0));
+      f[2 * a] = !open_[2 * a] && to_lo + wall_.delta() < h ? wall_.fraction(to_lo, df[2 * a]) : (df[2 * a] = 0, real(0));
+      f[2 * a + 1] = !open_[2 * a + 1] && to_hi + wall_.delta() < h ? wall_.fraction(to_hi, df[2 * a + 1])
+                                                                       : (df[2 * a + 1] = 0, real(0));
       df[2 * a + 1] = -df[2 * a + 1];  // the distance to the upper face falls as x_a grows
       near = near || f[2 * a] > 0 || f[2 * a + 1] > 0;
       outside *= (1 - f[2 * a]) * (1 - f[2 * a + 1]);
@@ -171,6 +217,9 @@ class Box : public Fix, public DensityBoundary {
   bool viscous_no_slip_ = false;  // this run's: a Laplacian viscosity holds the no-slip walls
   double contact_spacings_, contact_ = 0;  // in spacings, and in metres for this run
   std::vector<real> incoming_[3];
+  bool open_[6] = {false, false, false, false, false, false}, any_open_ = false;  // faces x-, x+, y-, y+, z-, z+
+  ParticleFlow left_;       // what left through the open faces
+  std::vector<char> drop_;  // kept: a step allocates nothing
 };
 
 }  // namespace
@@ -187,6 +236,9 @@ void register_box(StyleRegistry& r) {
           {"no_slip", ParamType::Bool, false, "",
            "hold the fluid at rest along the walls: through a Laplacian sph_viscosity's wall term (with "
            "wall_density), else by stopping a touching particle's motion along the wall (overrides friction)"},
+          ParamSpec{"open", ParamType::StringList, Names{}, "",
+                    "faces with no wall, which particles leave the run through (count and mass: the flow compute)"}
+              .one_of({"x-", "x+", "y-", "y+", "z-", "z+"}),
           ParamSpec{"contact_distance", ParamType::Real, 0.5, "spacing",
                     "closest a particle's centre comes to a face, in particle spacings (0.5: its radius, which "
                     "keeps a column at rest still, docs/physics.md)"}

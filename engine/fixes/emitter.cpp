@@ -17,12 +17,19 @@
 //
 // A layer that would land in fluid (fluid within s/2 of its plane over the opening) waits: D
 // stays at L until there is room, and the log says so once. Sites inside a solid are left out.
+//
+// An inlet zone (`buffer` > 0, for an opening under water or against a wall, where the fluid
+// ahead would block it): after each step's velocity update the particles over the opening
+// within `buffer` ahead of it (and s/2 behind) move at U exactly, so that the zone feeds the
+// fluid ahead at the set rate and no fluid flows back over the opening (DualSPHysics's inlet
+// buffer, simplified: the zone's particles are fluid, their velocity imposed).
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/core/particle_flow.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/distributed/comm.hpp"
@@ -51,7 +58,8 @@ class Emitter : public Fix {
         center_(p.vec3("center")),
         start_(p.real("start")),
         stop_(p.real("stop")),
-        spacing_(p.has("spacing") ? p.real("spacing") : 0) {
+        spacing_(p.has("spacing") ? p.real("spacing") : 0),
+        buffer_(p.real("buffer")) {
     const Vec3 normal = p.vec3("normal");
     if (!(dot(normal, normal) > 0)) throw Error("parameter 'normal' is the zero vector: the opening needs a direction");
     n_ = unit(normal);
@@ -86,7 +94,12 @@ class Emitter : public Fix {
     v_ = cross(n_, u_);
   }
 
-  std::vector<Stage> stages() const override { return {Stage::exchange}; }
+  std::vector<Stage> stages() const override {
+    if (buffer_ > 0) return {Stage::exchange, Stage::velocity_post};
+    return {Stage::exchange};
+  }
+  // After the other fixes' velocity_post (vorticity, XSPH): the zone's velocity is the last word.
+  Role role() const override { return Role::boundary; }
   bool runs_distributed() const override { return true; }  // each rank creates its share of a layer
   const ParticleFlow* particle_flow() const override { return &emitted_; }
   double created_mass(const Simulation& sim) const override {
@@ -140,6 +153,23 @@ class Emitter : public Fix {
       distance_ -= L;
     }
     emitted_.count_from(P, before);
+  }
+
+  // The inlet zone moves at the set velocity.
+  void velocity_post(Simulation& sim) override {
+    auto& P = sim.particles();
+    const double s = used_spacing_;
+    const real v[3] = {real(velocity_[0]), real(velocity_[1]), real(velocity_[2])};
+    real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
+    const real *x = P.x(), *y = P.y(), *z = P.z();
+    for_particles(P.size(), [&](std::size_t i) {
+      const Vec3 d = {double(x[i]) - center_[0], double(y[i]) - center_[1], double(z[i]) - center_[2]};
+      const double along = dot(d, n_);
+      if (along < -0.5 * s || along >= buffer_ || !over_opening(dot(d, u_), dot(d, v_), 0)) return;
+      vx[i] = v[0];
+      vy[i] = v[1];
+      vz[i] = v[2];
+    });
   }
 
   void save_state(ByteWriter& w) const override {
@@ -233,16 +263,20 @@ class Emitter : public Fix {
   // the layer's plane and within s/2 of the opening: on every rank's.
   bool blocked(const Simulation& sim, std::size_t count, double ahead, double s) const {
     const auto& P = sim.particles();
-    const double reach = disc_ ? radius_ + 0.5 * s : 0, half_a = 0.5 * size_[0] + 0.5 * s, half_b = 0.5 * size_[1] + 0.5 * s;
     std::int64_t found = 0;
 #pragma omp parallel for schedule(static) reduction(+ : found)
     for (std::size_t i = 0; i < count; ++i) {
       const Vec3 d = {double(P.x()[i]) - center_[0], double(P.y()[i]) - center_[1], double(P.z()[i]) - center_[2]};
       if (std::fabs(dot(d, n_) - ahead) >= 0.5 * s) continue;
-      const double a = dot(d, u_), b = dot(d, v_);
-      found += disc_ ? a * a + b * b < reach * reach : std::fabs(a) < half_a && std::fabs(b) < half_b;
+      found += over_opening(dot(d, u_), dot(d, v_), 0.5 * s);
     }
     return (P.distributed() ? comm::sum(found) : found) > 0;
+  }
+
+  // Whether in-plane offsets (a, b) from the centre lie over the opening, widened by `margin`.
+  bool over_opening(double a, double b, double margin) const {
+    if (disc_) return a * a + b * b < (radius_ + margin) * (radius_ + margin);
+    return std::fabs(a) < 0.5 * size_[0] + margin && std::fabs(b) < 0.5 * size_[1] + margin;
   }
 
   // One layer, `ahead` in front of the opening: each rank its share of the sites, numbered as
@@ -263,6 +297,7 @@ class Emitter : public Fix {
   Vec3 center_, n_{}, u_{}, v_{}, velocity_{};
   Vec2 size_{0, 0};
   double radius_ = 0, speed_ = 0, start_, stop_, spacing_;
+  double buffer_;               // the inlet zone's depth (0: none)
   double layer_distance_ = 0;  // L: a layer enters each time the fluid advances this far
   double used_spacing_ = 0;    // the spacing of the last run
   real mass_ = 0;
@@ -298,6 +333,10 @@ void register_emitter(StyleRegistry& r) {
           ParamSpec{"velocity", ParamType::Vector3, std::nullopt, "m/s",
                     "the inflow velocity, instead of 'speed' (its part along the normal must be positive)", true}
               .magnitude_at_most(1e6),
+          ParamSpec{"buffer", ParamType::Real, 0.0, "m",
+                    "an inlet zone this deep ahead of the opening, whose particles move at the set velocity (for an "
+                    "opening under water or at a wall; 0: none)"}
+              .within(0, 1e6),
           ParamSpec{"start", ParamType::Real, 0.0, "s", "when the fluid starts to enter"}.magnitude_at_most(1e12),
           ParamSpec{"stop", ParamType::Real, 1e12, "s", "when it stops"}.magnitude_at_most(1e12),
           ParamSpec{"spacing", ParamType::Real, std::nullopt, "m",

@@ -129,13 +129,14 @@ void SolidFix::constraint(Simulation& sim, int) {
   std::size_t lost = n;
   // A solid touching a face of the domain (a ramp on the floor) may push a particle at its
   // foot across that face; the domain stays the hard limit (but along a periodic axis, whose
-  // faces a particle crosses to come back at the other side).
+  // faces a particle crosses to come back at the other side, and an open face, which it leaves
+  // the run through).
   const Domain& dom = sim.domain();
   constexpr real kOpen = std::numeric_limits<real>::infinity();
   real lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
-    lo[a] = dom.periodic[a] ? -kOpen : real(dom.lo[a]);
-    hi[a] = dom.periodic[a] ? kOpen : real(dom.hi[a]);
+    lo[a] = dom.periodic[a] || dom.open[2 * a] ? -kOpen : real(dom.lo[a]);
+    hi[a] = dom.periodic[a] || dom.open[2 * a + 1] ? kOpen : real(dom.hi[a]);
   }
   // Under an integrator of positions (pbf) a projection changes the velocity by dx / dt:
   // the wall takes m dx / dt. (A leapfrog's velocities are corrected in velocity_update.)

@@ -49,9 +49,10 @@ void put_restart_scene(ByteWriter& w, const Simulation& sim) {
   w.put(clock.step);
   w.put(clock.step_base);
   w.put(clock.time_base);
-  std::uint32_t periodic = 0;
-  for (int a = 0; a < 3; ++a) periodic |= d.periodic[a] ? 1u << a : 0u;
-  w.put(periodic);
+  std::uint32_t faces = 0;  // bits 0-2: periodic axes; bits 3-8: open faces
+  for (int a = 0; a < 3; ++a) faces |= d.periodic[a] ? 1u << a : 0u;
+  for (int f = 0; f < 6; ++f) faces |= d.open[f] ? 1u << (3 + f) : 0u;
+  w.put(faces);
   w.put(sim.particles().next_id());
 }
 

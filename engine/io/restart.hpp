@@ -5,8 +5,10 @@
 //   0x01020304 (u32), size of a real in bytes (u32), CRC-32 of the payload (u32),
 //   payload size in bytes (u64)
 //   payload: domain lo[3] hi[3], kernel radius, time step, rest density (f64); the clock
-//   (step, step_base i64, time_base f64); the particle count N (u64), ids (N i64); the
-//   fields (count u32, then name, components u32, N reals per component); the fixes' saved
+//   (step, step_base i64, time_base f64); since version 2, the periodic axes and open faces
+//   (u32: bit a for axis a periodic, bit 3 + f for face f open; f = 2 a for the lower face,
+//   2 a + 1 for the upper) and the next id to give (i64: ids are never reused, so those saved
+//   may have gaps); the particle count N (u64), ids (N i64); the fields (count u32, then name, components u32, N reals per component); the fixes' saved
 //   states (count u32, then id, style, size u64, bytes). Strings are u64 length + bytes.
 //
 // One process saves the particles in memory order, the ranks of a distributed run in id order

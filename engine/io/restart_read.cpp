@@ -277,9 +277,15 @@ RestartSummary read_restart(Simulation& sim, const std::string& path) {
   check_clock(clock, dt, what);
   std::int64_t next_id = -1;  // (version 1: the ids were 0..n-1)
   if (version >= 2) {
-    const auto periodic = r.get<std::uint32_t>();
-    if (periodic > 7) throw Error(fmt::format("{}: the periodic axes ({:#x}) are damaged", what, periodic));
-    for (int a = 0; a < 3; ++a) domain.periodic[a] = (periodic >> a) & 1u;
+    const auto faces = r.get<std::uint32_t>();  // bits 0-2: periodic axes; bits 3-8: open faces
+    bool damaged = faces >= 1u << 9;
+    for (int a = 0; a < 3; ++a) {
+      domain.periodic[a] = (faces >> a) & 1u;
+      domain.open[2 * a] = (faces >> (3 + 2 * a)) & 1u;
+      domain.open[2 * a + 1] = (faces >> (4 + 2 * a)) & 1u;
+      damaged = damaged || (domain.periodic[a] && (domain.open[2 * a] || domain.open[2 * a + 1]));
+    }
+    if (damaged) throw Error(fmt::format("{}: the periodic axes and open faces ({:#x}) are damaged", what, faces));
     next_id = r.get<std::int64_t>();
   }
 

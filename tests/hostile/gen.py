@@ -310,6 +310,8 @@ NON_NUMERIC = [
     # style, parameter, type, specific values [(label, lua, outcome)]
     ("pbf", "one_sided", "bool", [("false", "false", "A")]),
     ("box", "wall_density", "bool", [("false", "false", "A")]),
+    ("box", "open", "list", [("unknown", '{"w+"}', "R"), ("twice", '{"x+", "x+"}', "R"), ("upper_x", '"x+"', "A"),
+                             ("floor", '{"z-"}', "A")]),
     ("box", "no_slip", "bool", [("true", "true", "A")]),
     ("wcsph", "eos", "string", [("empty", '""', "R"), ("capital", '"Tait"', "R"), ("linear", '"linear"', "A")]),
     ("wcsph", "density", "string", [("empty", '""', "R"), ("continuity", '"continuity"', "A")]),
