@@ -16,21 +16,22 @@
 //
 // Bounds. Centre line at steady state (t = 8 s = 7.3 viscous times H^2 / (pi^2 nu'), compared
 // with the series at that time): the 3%. What moves it: the wall layers' force errors
-// of the no-slip term (first layer 0.75 of the bulk's curvature force, second 1.07: 4 eps z'
-// s / H^2 of the centre line each, 0.35% and 0.5% at 12 spacings, opposite signs); the
-// particles leaving the cubic lattice as the layers slide (0.2% in kappa); the density's
-// variation, Ma^2 = 0.1% (c0 = 30 u_max); the probe's Shepard average of the parabola,
-// u'' <dz^2> / 2 = 4 <dz^2> / H^2 of u_max low (<dz^2> = <r^2> / 3 = h^2 / 15 for Wendland
-// C2: 0.7%). Measured -0.8%. Start-up (t = 0.5 and 1 s, 0.45 and 0.9 viscous times): the error e =
-// u - u_series obeys the same diffusion with the (steady) error forcing and starts at zero, so
-// each mode of it grows as 1 - exp(-lambda_n t) towards its steady value; the centre line's
-// error is the slowest mode's, at most 3% (1 - exp(-lambda_1 t)) of u_max. Measured -0.1% and
-// -0.2% of u_max (bounds 1.1% and 1.8%). Shape: u(z) / u(H/2) against 4 z (H - z) / H^2 at
-// 0.2 <= z/H <= 0.8 (probes more than h from the plates: a Shepard sum nearer a plate is
-// one-sided), within 1% of the centre line: the Shepard bias cancels to b (1 - u/u_c) / u_c
-// (under 0.3%) and the wall forcing's share is its own shape's deviation (under the 0.85% it
-// moves the centre); a slip of half a spacing at each plate, what the no-slip term removes,
-// makes the ratio 5% high at z = 0.2 H. Measured 0.4%. About 1.5 s of one core.
+// of the no-slip term (first layer 0.75 of the bulk's curvature force, second 1.07: 4 eps z' s
+// / H^2 of the centre line each, 0.35% and 0.3% at 12 spacings, the second's eps being 0.006 H
+// / s; opposite signs); the particles leaving the cubic lattice as the layers slide (0.2% in
+// kappa); the density's variation, Ma^2 = 0.1% (c0 = 30 u_max); the probe's Shepard average of
+// the parabola, u'' <dz^2> / 2 = 4 <dz^2> / H^2 of u_max low (<dz^2> = <r^2> / 3 = h^2 / 15 for
+// Wendland C2: 0.7%). Measured -0.8%. Start-up (t = 0.5 and 1 s, 0.45 and 0.9 viscous times):
+// the error e = u - u_series obeys the same diffusion with the (steady) error forcing and
+// starts at zero, so each mode of it grows as 1 - exp(-lambda_n t) towards its steady value;
+// the centre line's error is the slowest mode's, at most 3% (1 - exp(-lambda_1 t)) of u_max.
+// Measured -0.1% and -0.2% of u_max (bounds 1.1% and 1.8%). Shape: u(z) / u(H/2) against 4 z (H
+// - z) / H^2 at 0.2 <= z/H <= 0.8 (probes more than h from the plates: a Shepard sum nearer a
+// plate is one-sided), within 1% of the centre line: the Shepard bias cancels to b (1 - u/u_c)
+// / u_c (under 0.3%) and the wall forcing's share is its own shape's deviation (under the 0.65%
+// it moves the centre); a slip of half a spacing at each plate, what the no-slip term removes,
+// makes the ratio 5% high at z = 0.2 H. Measured 0.1%. 0.4 s of one core (990 steps of 576
+// particles).
 #include <gtest/gtest.h>
 
 #include <cmath>
