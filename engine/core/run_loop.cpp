@@ -115,8 +115,14 @@ void RunLoop::init_new_particles() {
   auto& P = sim_.particles_;
   std::vector<std::uint32_t>& fresh = fresh_;  // kept: an emitter's steps allocate nothing
   fresh.clear();
-  for (std::size_t i = 0; i < P.size(); ++i)
-    if (P.ids()[i] >= P.first_new_id()) fresh.push_back(static_cast<std::uint32_t>(i));
+  if (sim_.running_) {  // the exchange stage appended them: the last ones, in order
+    std::size_t first = P.size();
+    while (first > 0 && P.ids()[first - 1] >= P.first_new_id()) --first;
+    for (std::size_t i = first; i < P.size(); ++i) fresh.push_back(static_cast<std::uint32_t>(i));
+  } else {  // (placed on their ranks, they may lie anywhere)
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.ids()[i] >= P.first_new_id()) fresh.push_back(static_cast<std::uint32_t>(i));
+  }
   const auto found = static_cast<std::int64_t>(fresh.size());
   if ((P.distributed() ? comm::sum(found) : found) > 0)
     for (const auto& f : sim_.fixes_)

@@ -84,7 +84,9 @@ class Box : public Fix, public DensityBoundary {
     auto& P = sim.particles();
     const Domain& d = sim.domain();
     drop_.assign(P.size(), 0);
-    for (std::size_t i = 0; i < P.size(); ++i) drop_[i] = d.beyond_open_face(P.x()[i], P.y()[i], P.z()[i]);
+    std::size_t beyond = 0;
+    for (std::size_t i = 0; i < P.size(); ++i) beyond += drop_[i] = d.beyond_open_face(P.x()[i], P.y()[i], P.z()[i]);
+    if (beyond == 0 && !P.distributed()) return;  // (on several ranks the counts are collective)
     left_.count_marked(P, drop_);
     P.remove(drop_);
   }

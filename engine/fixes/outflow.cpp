@@ -31,7 +31,8 @@ class Outflow : public Fix {
     if (!checked_) region_.check_scene(sim);
     checked_ = true;
     auto& P = sim.particles();
-    region_.mark_inside(sim, drop_);
+    const std::size_t inside = region_.mark_inside(sim, drop_);
+    if (inside == 0 && !P.distributed()) return;  // (on several ranks the counts are collective)
     removed_.count_marked(P, drop_);
     P.remove(drop_);
   }
