@@ -55,12 +55,7 @@ pbf.fix("inlet", "emitter", {center = {s / 2, W / 2, inflow_depth / 2}, normal =
                              size = {W, inflow_depth}, speed = speed, spacing = s, buffer = 4 * s})
 
 require("outputs").add(out, {color = "speed", min = 0, max = 1.5, direction = {0.4, 1.5, -0.7}, zoom = 1.4})
-if out ~= "" then
-  pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = var.interval or 0.02})
-  if (var.restart_interval or 0.5) > 0 then
-    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart", interval = var.restart_interval or 0.5})
-  end
-end
+require("outputs").frames(out, 0.5)
 
 pbf.compute("n", "count")
 pbf.compute("in", "flow", {fix = "inlet"})

@@ -88,14 +88,7 @@ pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true, "wall_densi
                          friction = var.friction})
 -- Pictures, movie and ParaView frames on request (share/lua/outputs.lua).
 require("outputs").add(out, {color = "speed", min = 0, max = 2.5, direction = {1, 2.2, -0.9}, zoom = 1.4})
-if out ~= "" then
-  pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = var.interval or 0.02})
-  if var.restart_every then
-    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart", every = var.restart_every})
-  elseif (var.restart_interval or 0.25) > 0 then
-    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart", interval = var.restart_interval or 0.25})
-  end
-end
+require("outputs").frames(out, 0.25)
 
 pbf.compute("err", "density_error")
 pbf.compute("front", "front", {axis = "x", percentile = var.percentile or 99})

@@ -49,12 +49,7 @@ pbf.fix("drain", "outflow", {region = "box", lo = {L - drain, W / 2 - drain / 2,
                              hi = {L, W / 2 + drain / 2, 2 * s}})
 
 require("outputs").add(out, {color = "speed", min = 0, max = speed, direction = {0.6, 1.6, -0.9}, zoom = 1.2})
-if out ~= "" then
-  pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = var.interval or 0.02})
-  if (var.restart_interval or 0.5) > 0 then
-    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart", interval = var.restart_interval or 0.5})
-  end
-end
+require("outputs").frames(out, 0.5)
 
 pbf.compute("n", "count")
 pbf.compute("in", "flow", {fix = "nozzle"})

@@ -2,6 +2,7 @@
 --   images=T     PNG pictures every T simulated seconds, OUT/image_00000.png, ...
 --   movie=PATH   an mp4 of pictures every movie_interval seconds (default 0.02)
 --   vtk=T        ParaView frames every T seconds, OUT/vtk/frame_*.vtu and OUT/vtk/frame.pvd
+--   outputs.frames(out, restart_default): the text frames and restarts (below)
 -- `view` holds the dump/image parameters (camera, colour field and scale) that pictures and
 -- the movie share. A scenario loads it with
 --   package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
@@ -20,6 +21,20 @@ function outputs.add(out, view)
     pbf.fix("movie", "dump/movie", picture{path = var.movie, interval = var.movie_interval or 0.02})
   end
   if var.vtk then pbf.fix("vtk", "dump/vtk", {path = out .. "/vtk/frame_*.vtu", interval = var.vtk}) end
+end
+
+-- Text frames every `interval` seconds (-v interval, default 0.02) in OUT, and restarts every
+-- restart_interval seconds (default `restart_default`; 0 for none) or every restart_every
+-- steps, the newest two kept; nothing when OUT is "".
+function outputs.frames(out, restart_default)
+  if out == "" then return end
+  pbf.fix("frames", "dump/text", {path = out .. "/frame_*.txt", interval = var.interval or 0.02})
+  if var.restart_every then
+    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart", every = var.restart_every})
+  elseif (var.restart_interval or restart_default) > 0 then
+    pbf.fix("restarts", "restart", {path = out .. "/restart.*.restart",
+                                    interval = var.restart_interval or restart_default})
+  end
 end
 
 return outputs

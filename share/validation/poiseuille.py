@@ -36,6 +36,8 @@ import time
 
 import numpy as np
 
+from machine import machine  # share/validation/machine.py
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PROG = "poiseuille.py"
 H, NU, F = 0.1, 1e-3, 8e-3  # the scenario's defaults
@@ -69,20 +71,6 @@ def kappa(support, eta=0.1):
     V = 1 / W.sum()
     return float(-V * np.sum(g * r2 * Z * Z / (r2 + eta * eta * h * h)))
 
-
-def machine():
-    model, count = None, 0
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name") and model is None:
-                    model = line.split(":", 1)[1].strip()
-                if line.startswith("processor"):
-                    count += 1
-    except OSError:
-        pass
-    model = model or platform.processor() or "an unknown CPU"
-    return f"{model}, {count} logical CPUs" if count else model
 
 
 def run(binary, spacings, support, work, commands):

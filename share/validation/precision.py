@@ -53,6 +53,8 @@ sys.path.insert(0, HERE)
 import martin_moyce as mm  # noqa: E402  (the dam break's runner and scores)
 import speed_vs_error as sve  # noqa: E402  (its PBF default row)
 
+from machine import machine  # share/validation/machine.py
+
 ROOT = mm.ROOT
 PROG = "precision.py"
 ENGINE_FLAGS = ["--threads", "1", "--log", "none"]  # one thread; no log.pbfengine in the working directory
@@ -212,20 +214,6 @@ def percent(a, b):
     """float, double, difference of two fractions shown in %."""
     return f"{100 * a:.4f}%", f"{100 * b:.4f}%", f"{100 * (a - b):+.4f} points ({relative(a, b)})"
 
-
-def machine():
-    model, count = None, 0
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name") and model is None:
-                    model = line.split(":", 1)[1].strip()
-                if line.startswith("processor"):
-                    count += 1
-    except OSError:
-        pass
-    model = model or platform.processor() or "an unknown CPU"
-    return f"{model}, {count} logical CPUs" if count else model
 
 
 def main():
