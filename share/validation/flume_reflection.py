@@ -44,6 +44,8 @@ import subprocess
 import sys
 import time
 
+from machine import machine  # share/validation/machine.py
+
 G = 9.81
 PERIOD, STROKE, DEPTH, START = 1.0, 0.04, 0.3, 1.0
 GAUGES = [2.70, 2.84, 3.04, 3.30]
@@ -195,18 +197,6 @@ def run_case(case, binary, scenario, work, spacing):
         f.write(f"{wall:.0f}\n")
     return wall
 
-
-def machine():
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return f"{platform.node()}, {cpu}, {os.cpu_count()} hardware threads, {platform.system()} {platform.release()}"
 
 
 def plot(results, png):
