@@ -102,7 +102,10 @@ TEST_P(StillColumn, RestsAtTheDefaults) {
     if (c["time"][k] < 1.0) continue;
     if (top1 < 0) top1 = c["top"][k];
     EXPECT_LT(c["v.avg"][k], GetParam().most_mean_speed) << "t = " << c["time"][k];
-    EXPECT_LT(c["v.max"][k], kMostSpeed) << "t = " << c["time"][k];
+    // (Without side walls the layer's surface particles roll into the gaps below them in double
+    // precision too, measured 2026-11-28 up to 0.09 m/s: the fall through 1 mm bounds them.)
+    const double most = periodic.empty() ? kMostSpeed : std::sqrt(2 * 9.81 * 0.001);
+    EXPECT_LT(c["v.max"][k], most) << "t = " << c["time"][k];
     EXPECT_NEAR(c["top"][k], top1, 0.01 * top1) << "t = " << c["time"][k];
     EXPECT_NEAR(c["top"][k], top0, s) << "t = " << c["time"][k];
     ++checked;

@@ -205,7 +205,12 @@ double Simulation::max_kinematic_viscosity() const {
 }
 
 double Simulation::particle_mass() const {
-  if (global_count() > 0) return last_mean_mass_ = particles_.mean_mass();
+  // Equal masses give their own value, whatever their count (their mean, a sum divided, can
+  // be an ulp off in double precision, and would change when the count does).
+  if (global_count() > 0) {
+    const real common = uniform_mass(particles_.mass(), particles_.size(), particles_.distributed());
+    return last_mean_mass_ = common > 0 ? double(common) : particles_.mean_mass();
+  }
   for (const auto& f : fixes_)
     if (const double m = f->created_mass(*this); m > 0) return m;
   return last_mean_mass_;

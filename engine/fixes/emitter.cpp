@@ -190,7 +190,7 @@ class Emitter : public Fix {
   // found it); 0 when there is none of these.
   double known_spacing(const Simulation& sim) const {
     if (spacing_ > 0) return spacing_;
-    if (sim.global_count() > 0) return lattice_spacing(sim.particles().mean_mass(), sim.kernels(), sim.rest_density());
+    if (sim.global_count() > 0) return lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
     return used_spacing_;
   }
   double spacing(const Simulation& sim) const {
