@@ -194,7 +194,7 @@ TEST(NeighborGrid, CellCountIsCappedInAHugeBox) {
   for (int i = 0; i < 100; ++i) p.add(500 + 0.004 * i, 500, 500);
   NeighborGrid grid;
   grid.bin(p.x.data(), p.y.data(), p.z.data(), p.x.size(), d, 0.01);
-  EXPECT_LE(grid.cell_count(), NeighborGrid::max_cells(p.x.size()));
+  EXPECT_LE(grid.cell_count(), NeighborGrid::max_cells());
   expect_matches_brute_force(p, d, 0.01, 2);
   omp_set_num_threads(1);
 }
@@ -214,7 +214,7 @@ TEST(NeighborGrid, ABoxOfCellsListsAsTheWholeGridDoes) {
     all_ids.push_back(5999 - i);  // ids not in memory order
   }
   const double h = 0.07;
-  const GridGeometry g = GridGeometry::of(unit_box(), h, all.x.size());
+  const GridGeometry g = GridGeometry::of(unit_box(), h);
   NeighborGrid whole;
   whole.bin(all.x.data(), all.y.data(), all.z.data(), all.x.size(), g, CellRange::all(g));
   whole.order_cells_by(all_ids.data());

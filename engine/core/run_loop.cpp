@@ -135,7 +135,7 @@ void RunLoop::init_new_particles() {
 // name.
 void RunLoop::distribute() {
   if (!sim_.particles_.distributed()) {
-    sim_.geometry_ = GridGeometry::of(sim_.domain_, sim_.h_, sim_.particles_.size());
+    sim_.geometry_ = GridGeometry::of(sim_.domain_, sim_.h_);
     return;
   }
   for (const auto& f : sim_.fixes_)

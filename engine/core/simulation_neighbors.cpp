@@ -20,10 +20,10 @@ void Simulation::place_particles() {
   auto& P = particles_;
   if (!P.distributed()) return;
   if (h_ <= 0) throw Error("the kernel radius h is not set");
-  // The cells are the whole domain's, from every rank's count, so that every rank lists
-  // neighbours alike (engine/distributed/decomposition.hpp); a count that changed them (a
-  // solid left particles out) re-cuts the boxes.
-  const GridGeometry cells = GridGeometry::of(domain_, h_, P.global_size());
+  // The cells are the whole domain's (its extent and h alone), so that every rank lists
+  // neighbours alike (engine/distributed/decomposition.hpp); a domain or h changed between
+  // runs re-cuts the boxes.
+  const GridGeometry cells = GridGeometry::of(domain_, h_);
   if (P.unplaced() == 0 && cells == geometry_) return;
   geometry_ = cells;
   decomposition_.distribute(P, geometry_);
@@ -34,7 +34,7 @@ void Simulation::refresh_neighbors() {
   place_particles();
   if (lists_valid_ && grid_version_ == positions_version_ && grid_.particle_count() == particles_.size()) return;
   if (h_ <= 0) throw Error("the kernel radius h is not set");
-  if (!particles_.distributed()) geometry_ = GridGeometry::of(domain_, h_, particles_.size());
+  if (!particles_.distributed()) geometry_ = GridGeometry::of(domain_, h_);
   bin_and_list();
 }
 
@@ -129,7 +129,7 @@ const NeighborGrid& Simulation::point_cells() {
   auto& P = particles_;
   place_particles();
   if (!P.distributed()) {
-    const GridGeometry cells = GridGeometry::of(domain_, h_, P.size());
+    const GridGeometry cells = GridGeometry::of(domain_, h_);
     if (!(cells == geometry_)) ghosts_version_ = 0;
     geometry_ = cells;
     if (!domain_.any_periodic()) ghost_range_ = CellRange::all(geometry_);

@@ -29,13 +29,17 @@ long clamp_cell(double coordinate, double lo, double cell_size, long dim) {
 // The offsets are 32-bit (4 bytes a particle instead of 8): lists of more pairs are refused.
 constexpr std::uint64_t kMostPairs = 0xFFFFFFFFu - NeighborGrid::kListPadding;
 
-std::size_t NeighborGrid::max_cells(std::size_t n) { return std::max<std::size_t>(4 * n, 1u << 15); }
+// 2^23 cells (203^3: a 2-million-particle scene at h = 2 spacings fills a quarter of them)
+// take 32 MiB an array (the cell starts, and a histogram per thread).
+std::size_t NeighborGrid::max_cells() { return std::size_t{1} << 23; }
 
-GridGeometry GridGeometry::of(const Domain& domain, double h, std::size_t particles) {
-  // Cells at least h wide; widen them when the box would need more cells than the cap.
-  // Counted in double until they fit: a huge domain over a tiny h must not overflow a long.
+GridGeometry GridGeometry::of(const Domain& domain, double h) {
+  // Cells at least h wide; widen them when the box would need more cells than the cap. The
+  // particle count plays no part: a scene that fills up or drains keeps its grid, so its
+  // neighbour order and its ranks' boxes. Counted in double until they fit: a huge domain over
+  // a tiny h must not overflow a long.
   double size = h;
-  const double cap = static_cast<double>(NeighborGrid::max_cells(particles));
+  const double cap = static_cast<double>(NeighborGrid::max_cells());
   auto cells_along = [&](int a) { return std::max(1.0, std::ceil(domain.extent(a) / size)); };
   for (;;) {
     const double total = cells_along(0) * cells_along(1) * cells_along(2);
@@ -82,7 +86,7 @@ std::size_t NeighborGrid::cell_of(real x, real y, real z) const {
 }
 
 void NeighborGrid::bin(const real* x, const real* y, const real* z, std::size_t n, const Domain& domain, double h) {
-  const GridGeometry g = GridGeometry::of(domain, h, n);
+  const GridGeometry g = GridGeometry::of(domain, h);
   bin(x, y, z, n, g, CellRange::all(g));
 }
 

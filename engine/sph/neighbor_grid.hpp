@@ -42,15 +42,15 @@ struct CellRange {
 };
 
 // The cells of the whole domain, at least h wide, widened when the domain would need more
-// than max_cells(particles). A distributed run gives every rank the same geometry (from the
-// particle count of all ranks), so that a particle's neighbours come in the same order
-// whichever rank lists them.
+// than max_cells(). They depend on the domain and h alone, so every rank of a distributed run
+// has the same geometry (a particle's neighbours come in the same order whichever rank lists
+// them), and a run whose particle count changes keeps it.
 struct GridGeometry {
   double lo[3] = {0, 0, 0};
   double cell_size[3] = {1, 1, 1};  // along each axis (equal, but along a periodic one)
   long dims[3] = {1, 1, 1};          // cells [0, dims) cover the domain
   bool periodic[3] = {false, false, false};
-  static GridGeometry of(const Domain& domain, double h, std::size_t particles);
+  static GridGeometry of(const Domain& domain, double h);
   // The cell along `axis` of a coordinate, clamped into the grid (NaN: cell 0); along a
   // periodic axis not clamped to the grid, only to [-dims - 2, 2 dims + 2) (positions lie
   // within a period of the faces: images, particles that crossed a face in this step).
@@ -116,8 +116,8 @@ class NeighborGrid {
   // The longest list of the last build.
   std::uint32_t max_neighbors() const { return most_; }
 
-  // Largest number of cells the grid allocates for n particles.
-  static std::size_t max_cells(std::size_t n);
+  // Largest number of cells of a domain's grid.
+  static std::size_t max_cells();
 
  private:
   std::size_t cell_of(real x, real y, real z) const;

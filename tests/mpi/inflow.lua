@@ -4,14 +4,16 @@
 -- that the pool's spreading front reaches. Both cross the ranks' boundaries; the particles the
 -- emitter creates are numbered as one process numbers them, wherever they land.
 -- Writes OUT/f_*.txt (id, position, velocity), OUT/thermo.csv (the count, what came in and
--- what went out). -v solver=wcsph for WCSPH; -v read=FILE continues from a restart, -v
--- save=FILE writes one at the end; -v steps=N runs until step N (default 200).
+-- what went out), OUT/probes.csv (a probe and a gauge beside the faces y = 0 and y = 0.2).
+-- -v solver=wcsph for WCSPH; -v periodic=y makes the tank periodic across its width (the pool
+-- fills the period; the jet's sheet spreads through the faces); -v read=FILE continues from a
+-- restart, -v save=FILE writes one at the end; -v steps=N runs until step N (default 200).
 local s = 0.02
 local wcsph = var.solver == "wcsph"
 if var.read then
   pbf.read_restart(var.read)
 else
-  pbf.domain{lo = {0, 0, 0}, hi = {0.6, 0.2, 0.4}}
+  pbf.domain{lo = {0, 0, 0}, hi = {0.6, 0.2, 0.4}, periodic = var.periodic and {var.periodic} or nil}
   pbf.kernel_radius(2 * s)
   pbf.timestep(wcsph and 0.0005 or 0.002)
   pbf.lattice{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.16}, spacing = s}
@@ -33,6 +35,9 @@ pbf.compute("out", "flow", {fix = "drain"})
 pbf.compute("v", "speed")
 local out = var.out or "out/inflow"
 pbf.fix("dump", "dump/text", {path = out .. "/f_*.txt", every = 50, fields = {"id", "position", "velocity"}})
+pbf.compute("vel", "probe", {field = "velocity", points = {{0.25, 0.003, 0.05}, {0.35, 0.197, 0.02}}})
+pbf.compute("depth", "gauge", {points = {{0.3, 0.001, 0}, {0.45, 0.199, 0}}})
+pbf.fix("probes", "sample", {computes = {"vel", "depth"}, interval = 0.02, file = out .. "/probes.csv"})
 pbf.thermo{every = 10, csv = out .. "/thermo.csv",
            columns = {"step", "n", "in.count", "in.mass", "out.count", "out.mass", "v.max"}}
 pbf.run(tonumber(var.steps or 200) - pbf.step())

@@ -7,9 +7,11 @@ Cases:
   identical   tests/mpi/dambreak.lua on 1 process, 2 and 3 ranks: every text frame, the
               probes' CSV and the thermo CSV have the same bytes (the fluid crosses every
               rank boundary), and the VTK frames' pieces hold the rows of the 1-process .vtu.
-  identical_flow  tests/mpi/inflow.lua (an emitter and a sink), both solvers: frames and thermo
-              identical at 1 to 4 ranks, initial + in - out = present, and a restart written on 3
-              ranks continued on 2 as the run that never stopped.
+  identical_flow  tests/mpi/inflow.lua (an emitter and a sink), both solvers, in a closed tank
+              and in one periodic across its width: frames, thermo and probes identical at 1 to
+              4 ranks (and, periodic, at 2 threads), initial + in - out = present, and a restart
+              written on 3 ranks continued on 2 (periodic: and on 1 process at 2 threads) as the
+              run that never stopped.
   identical_wcsph  scenarios/dambreak.lua with WCSPH (leapfrog, wcsph, sph_viscosity, cfl)
               likewise: frames, dump/image's pictures and the thermo CSV (the front, the
               gauge at the back wall).
@@ -70,8 +72,8 @@ def environment():
     return env
 
 
-def run(args, ranks, script, variables, cwd):
-    command = [args.binary, "run", script, "--log", "none"]
+def run(args, ranks, script, variables, cwd, threads=1):
+    command = [args.binary, "run", script, "--log", "none"] + (["--threads", str(threads)] if threads > 1 else [])
     for name, value in variables.items():
         command += ["-v", f"{name}={value}"]
     if ranks > 1:
@@ -184,34 +186,56 @@ def identical_periodic(args, work):
 
 
 def identical_flow(args, work):
-    """An emitter and a sink: the same frames and thermo at 1 to 4 ranks, both solvers, and a
-    restart written on 3 ranks continued on 2 as the run that never stopped."""
+    """An emitter and a sink, in a closed tank and in one periodic across its width: the same
+    frames, thermo and probes at 1 to 4 ranks, both solvers, and (periodic) at 2 threads; a
+    restart written on 3 ranks continued on 2 (and, periodic, on 1 process at 2 threads) as the
+    run that never stopped."""
     script = os.path.join(HERE, "inflow.lua")
-    for solver in ("pbf", "wcsph"):
+    for solver, periodic in (("pbf", None), ("wcsph", None), ("pbf", "y"), ("wcsph", "y")):
         steps = 200 if solver == "pbf" else 800
-        base = os.path.join(work, solver)
+        name = solver + (f" periodic {periodic}" if periodic else "")
+        base = os.path.join(work, solver + (f"_periodic_{periodic}" if periodic else ""))
         os.makedirs(base)
-        out, frames = same_outputs(args, base, script, {"solver": solver, "steps": steps}, ["thermo.csv"],
+        variables = {"solver": solver, "steps": steps}
+        if periodic:
+            variables["periodic"] = periodic
+        out, frames = same_outputs(args, base, script, variables, ["thermo.csv", "probes.csv"],
                                    rank_counts=(1, 2, 3, 4))
         with open(os.path.join(out, "thermo.csv")) as f:
             rows = [line.strip().split(",") for line in f][2:]
         last = rows[-1]
         if not (float(last[2]) > 0 and float(last[4]) > 0):
-            fail(f"{solver}: nothing came in or went out ({last})")
+            fail(f"{name}: nothing came in or went out ({last})")
         if int(float(last[1])) != int(float(rows[0][1])) + int(float(last[2])) - int(float(last[4])):
-            fail(f"{solver}: the count is not initial + in - out ({last})")
-        saved = os.path.join(base, "half.restart")
-        for ranks, variables in [(3, {"out": os.path.join(base, "first"), "steps": steps // 2, "save": saved}),
-                                 (2, {"out": os.path.join(base, "on2"), "read": saved})]:
-            result = run(args, ranks, script, dict(variables, solver=solver, steps=variables.get("steps", steps)), base)
+            fail(f"{name}: the count is not initial + in - out ({last})")
+        continued = [(2, "on2", "2 ranks")]
+        if periodic:
+            threads2 = os.path.join(base, "t2")
+            result = run(args, 1, script, dict(variables, out=threads2), base, threads=2)
             if result.returncode != 0:
-                fail(f"{solver} {ranks} rank(s) with {variables}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+                fail(f"{name} at 2 threads: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+            for file in sorted(os.listdir(out)):
+                if os.path.isfile(os.path.join(out, file)) and not filecmp.cmp(
+                        os.path.join(out, file), os.path.join(threads2, file), shallow=False):
+                    fail(f"{name}: {file} differs between 1 and 2 threads")
+            continued.append((1, "on1t2", "1 process at 2 threads"))
+        saved = os.path.join(base, "half.restart")
+        first = dict(variables, out=os.path.join(base, "first"), steps=steps // 2, save=saved)
+        result = run(args, 3, script, first, base)
+        if result.returncode != 0:
+            fail(f"{name} 3 ranks with {first}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
         later = [f for f in frames if int(f[2:7]) * 50 > steps // 2]
-        for name in later:
-            if not filecmp.cmp(os.path.join(out, name), os.path.join(base, "on2", name), shallow=False):
-                fail(f"{solver}: {name} of the run continued on 2 ranks differs from the run that never stopped")
-        print(f"{solver}: {len(frames)} frames and thermo.csv identical at 1 to 4 ranks ({last[2]} in, {last[4]} out); "
-              f"a restart on 3 ranks continued on 2: {', '.join(later)} identical")
+        for ranks, where, label in continued:
+            then = dict(variables, out=os.path.join(base, where), read=saved)
+            result = run(args, ranks, script, then, base, threads=2 if ranks == 1 else 1)
+            if result.returncode != 0:
+                fail(f"{name} {ranks} rank(s) with {then}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+            for frame in later:
+                if not filecmp.cmp(os.path.join(out, frame), os.path.join(base, where, frame), shallow=False):
+                    fail(f"{name}: {frame} of the run continued ({where}) differs from the run that never stopped")
+        print(f"{name}: {len(frames)} frames, thermo.csv and probes.csv identical at 1 to 4 ranks"
+              f"{' and at 2 threads' if periodic else ''} ({last[2]} in, {last[4]} out); a restart on 3 ranks "
+              f"continued on {' and on '.join(label for _, _, label in continued)}: {', '.join(later)} identical")
 
 
 def identical_wcsph(args, work):
