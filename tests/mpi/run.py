@@ -9,7 +9,8 @@ Cases:
               rank boundary), and the VTK frames' pieces hold the rows of the 1-process .vtu.
   identical_flow  tests/mpi/inflow.lua (an emitter and a sink), both solvers: frames and thermo
               identical at 1 to 4 ranks, initial + in - out = present, and a restart written on 3
-              ranks continued on 2 as the run that never stopped.
+              ranks continued on 2 as the run that never stopped; and PBF with the jet's
+              velocity a Lua function of time and place (at 1 to 3 ranks).
   identical_wcsph  scenarios/dambreak.lua with WCSPH (leapfrog, wcsph, sph_viscosity, cfl)
               likewise: frames, dump/image's pictures and the thermo CSV (the front, the
               gauge at the back wall).
@@ -185,32 +186,36 @@ def identical_periodic(args, work):
 
 def identical_flow(args, work):
     """An emitter and a sink: the same frames and thermo at 1 to 4 ranks, both solvers, and a
-    restart written on 3 ranks continued on 2 as the run that never stopped."""
+    restart written on 3 ranks continued on 2 as the run that never stopped; the same for PBF
+    with the jet's velocity a Lua function (every rank calls it alike), at 1 to 3 ranks."""
     script = os.path.join(HERE, "inflow.lua")
-    for solver in ("pbf", "wcsph"):
+    for solver, profile in (("pbf", False), ("wcsph", False), ("pbf", True)):
         steps = 200 if solver == "pbf" else 800
-        base = os.path.join(work, solver)
+        label = solver + (" (a velocity function)" if profile else "")
+        base = os.path.join(work, solver + ("_profile" if profile else ""))
         os.makedirs(base)
-        out, frames = same_outputs(args, base, script, {"solver": solver, "steps": steps}, ["thermo.csv"],
-                                   rank_counts=(1, 2, 3, 4))
+        given = {"solver": solver, "steps": steps, **({"profile": 1} if profile else {})}
+        out, frames = same_outputs(args, base, script, given, ["thermo.csv"],
+                                   rank_counts=(1, 2, 3) if profile else (1, 2, 3, 4))
         with open(os.path.join(out, "thermo.csv")) as f:
             rows = [line.strip().split(",") for line in f][2:]
         last = rows[-1]
         if not (float(last[2]) > 0 and float(last[4]) > 0):
-            fail(f"{solver}: nothing came in or went out ({last})")
+            fail(f"{label}: nothing came in or went out ({last})")
         if int(float(last[1])) != int(float(rows[0][1])) + int(float(last[2])) - int(float(last[4])):
-            fail(f"{solver}: the count is not initial + in - out ({last})")
+            fail(f"{label}: the count is not initial + in - out ({last})")
         saved = os.path.join(base, "half.restart")
         for ranks, variables in [(3, {"out": os.path.join(base, "first"), "steps": steps // 2, "save": saved}),
                                  (2, {"out": os.path.join(base, "on2"), "read": saved})]:
-            result = run(args, ranks, script, dict(variables, solver=solver, steps=variables.get("steps", steps)), base)
+            result = run(args, ranks, script, {**given, **variables}, base)
             if result.returncode != 0:
-                fail(f"{solver} {ranks} rank(s) with {variables}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
+                fail(f"{label} {ranks} rank(s) with {variables}: exit {result.returncode}\n{result.stdout}\n{result.stderr}")
         later = [f for f in frames if int(f[2:7]) * 50 > steps // 2]
         for name in later:
             if not filecmp.cmp(os.path.join(out, name), os.path.join(base, "on2", name), shallow=False):
-                fail(f"{solver}: {name} of the run continued on 2 ranks differs from the run that never stopped")
-        print(f"{solver}: {len(frames)} frames and thermo.csv identical at 1 to 4 ranks ({last[2]} in, {last[4]} out); "
+                fail(f"{label}: {name} of the run continued on 2 ranks differs from the run that never stopped")
+        print(f"{label}: {len(frames)} frames and thermo.csv identical at 1 to {3 if profile else 4} ranks "
+              f"({last[2]} in, {last[4]} out); "
               f"a restart on 3 ranks continued on 2: {', '.join(later)} identical")
 
 
