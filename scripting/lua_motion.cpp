@@ -13,33 +13,6 @@ namespace pbf::lua {
 namespace {
 
 constexpr const char* kMotionType = "pbf.motion";
-const char alive_key = 0;  // its address keys the state's "alive" flag in the registry
-
-// A flag that stays true while the Lua state is open: a motion a fix still holds after the
-// script's state has closed (an error ends the script before the simulation is destroyed)
-// must not touch it. The flag's userdata is collected when the state closes, and its __gc
-// clears the flag.
-std::shared_ptr<bool> state_alive(lua_State* L) {
-  lua_rawgetp(L, LUA_REGISTRYINDEX, &alive_key);
-  if (auto* held = static_cast<std::shared_ptr<bool>*>(lua_touserdata(L, -1))) {
-    std::shared_ptr<bool> alive = *held;
-    lua_pop(L, 1);
-    return alive;
-  }
-  lua_pop(L, 1);
-  auto* held = new (lua_newuserdatauv(L, sizeof(std::shared_ptr<bool>), 0)) std::shared_ptr<bool>(std::make_shared<bool>(true));
-  lua_createtable(L, 0, 1);
-  lua_pushcfunction(L, [](lua_State* S) {
-    auto* flag = static_cast<std::shared_ptr<bool>*>(lua_touserdata(S, 1));
-    **flag = false;
-    flag->~shared_ptr();
-    return 0;
-  });
-  lua_setfield(L, -2, "__gc");
-  lua_setmetatable(L, -2);
-  lua_rawsetp(L, LUA_REGISTRYINDEX, &alive_key);
-  return *held;
-}
 
 // Reads the optional vector `key` of the table at `index` into `out` (zeros when absent).
 void optional_vec3(lua_State* L, int index, const char* key, std::array<double, 3>& out, const std::string& what) {
@@ -58,40 +31,29 @@ void optional_vec3(lua_State* L, int index, const char* key, std::array<double, 
 
 class FunctionMotion : public Motion {
  public:
-  FunctionMotion(lua_State* L, int index) : L_(L), alive_(state_alive(L)) {
-    lua_Debug ar;
-    lua_pushvalue(L, index);
-    lua_getinfo(L, ">S", &ar);  // pops the function
-    where_ = ar.linedefined > 0 ? fmt::format("{}:{}", ar.short_src, ar.linedefined) : std::string(ar.short_src);
-    lua_pushvalue(L, index);
-    ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
-  }
-  ~FunctionMotion() override {
-    if (*alive_) luaL_unref(L_, LUA_REGISTRYINDEX, ref_);
-  }
+  explicit FunctionMotion(std::shared_ptr<const FunctionRef> function) : function_(std::move(function)) {}
 
   Pose at(double t) const override {
-    if (!*alive_) throw Error("a motion function outlived its script");
-    const std::string what = fmt::format("the motion function ({}) at t = {}", where_, t);
-    lua_rawgeti(L_, LUA_REGISTRYINDEX, ref_);
-    lua_pushnumber(L_, t);
-    if (pcall(L_, 1, 1) != LUA_OK) throw Error(fmt::format("{}: {}", what, pop_error(L_)), true);
-    if (lua_type(L_, -1) != LUA_TTABLE) {
-      const std::string type = luaL_typename(L_, -1);
-      lua_pop(L_, 1);
+    const std::string what = fmt::format("the motion function ({}) at t = {}", function_->where(), t);
+    lua_State* L = function_->push();
+    lua_pushnumber(L, t);
+    if (pcall(L, 1, 1) != LUA_OK) throw Error(fmt::format("{}: {}", what, pop_error(L)), true);
+    if (lua_type(L, -1) != LUA_TTABLE) {
+      const std::string type = luaL_typename(L, -1);
+      lua_pop(L, 1);
       throw Error(fmt::format("{} returned a {}, not a table {{translate = {{x, y, z}}, rotate = {{rx, ry, rz}}}}",
                               what, type));
     }
     Pose pose;
-    const int table = lua_gettop(L_);
+    const int table = lua_gettop(L);
     try {
-      optional_vec3(L_, table, "translate", pose.translate, what);
-      optional_vec3(L_, table, "rotate", pose.rotate_deg, what);
+      optional_vec3(L, table, "translate", pose.translate, what);
+      optional_vec3(L, table, "rotate", pose.rotate_deg, what);
     } catch (...) {
-      lua_pop(L_, 1);
+      lua_pop(L, 1);
       throw;
     }
-    lua_pop(L_, 1);
+    lua_pop(L, 1);
     for (int c = 0; c < 6; ++c) {
       const double v = c < 3 ? pose.translate[c] : pose.rotate_deg[c - 3];
       if (!std::isfinite(v) || std::abs(v) > 1e6)
@@ -101,18 +63,17 @@ class FunctionMotion : public Motion {
     return pose;
   }
 
-  std::string description() const override { return fmt::format("function ({})", where_); }
+  std::string description() const override { return fmt::format("function ({})", function_->where()); }
 
  private:
-  lua_State* L_;
-  std::shared_ptr<bool> alive_;
-  int ref_;
-  std::string where_;
+  std::shared_ptr<const FunctionRef> function_;
 };
 
 }  // namespace
 
-MotionPtr function_motion(lua_State* L, int index) { return std::make_shared<FunctionMotion>(L, lua_absindex(L, index)); }
+MotionPtr function_motion(std::shared_ptr<const FunctionRef> function) {
+  return std::make_shared<FunctionMotion>(std::move(function));
+}
 
 MotionPtr motion_value(lua_State* L, int index) {
   auto* held = static_cast<MotionPtr*>(luaL_testudata(L, index, kMotionType));

@@ -4,12 +4,13 @@
 #include <lua.hpp>
 
 #include "engine/registry/params.hpp"
+#include "scripting/lua_function.hpp"
 
 namespace pbf::lua {
 
-// The function at `index` as a Motion: each call of at(t) calls it with t and reads the table
-// it returns, {translate = {x, y, z}, rotate = {rx, ry, rz}} (either may be left out).
-MotionPtr function_motion(lua_State* L, int index);
+// A function as a Motion: each call of at(t) calls it with t and reads the table it returns,
+// {translate = {x, y, z}, rotate = {rx, ry, rz}} (either may be left out).
+MotionPtr function_motion(std::shared_ptr<const FunctionRef> function);
 
 // The Motion held by the value at `index` if it is one pbf.keyframes made, else nullptr.
 MotionPtr motion_value(lua_State* L, int index);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include "scripting/lua_function.hpp"
 #include "scripting/lua_motion.hpp"
 
 namespace pbf::lua {
@@ -218,7 +219,7 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
       return static_cast<double>(lua_tonumber(L, index));
     case LUA_TBOOLEAN: return lua_toboolean(L, index) != 0;
     case LUA_TSTRING: return string(L, index, fmt::format("parameter '{}'", name).c_str());
-    case LUA_TFUNCTION: return function_motion(L, index);
+    case LUA_TFUNCTION: return script_function(L, index);
     case LUA_TUSERDATA:
       if (MotionPtr motion = motion_value(L, index)) return motion;
       throw Error(fmt::format("parameter '{}': this userdata is no parameter value", name));
@@ -250,7 +251,7 @@ ParamValue param_value(lua_State* L, int index, const std::string& name) {
     }
     default:
       throw Error(fmt::format("parameter '{}': a {} is not a parameter value (number, boolean, string, "
-                              "{{x, y, z}}, {{\"name\", ...}}, {{{{x, y, z}}, ...}} or a motion)",
+                              "{{x, y, z}}, {{\"name\", ...}}, {{{{x, y, z}}, ...}}, a function or a motion)",
                               name, luaL_typename(L, index)));
   }
 }

@@ -49,7 +49,8 @@ Names string_list(lua_State* L, int index, const char* what);
 // {{x, y, z}, ...}
 Points point_list(lua_State* L, int index, const char* what);
 // A Lua value converted to a parameter value (number, integer, boolean, string, {x,y,z},
-// {"name", ...}, {{x,y,z}, ...}, a function or pbf.keyframes as a motion).
+// {"name", ...}, {{x,y,z}, ...}, a function (which the schema makes what the parameter
+// takes), pbf.keyframes as a motion).
 ParamValue param_value(lua_State* L, int index, const std::string& name);
 // The key/value pairs of the table at `index` (absent or nil: none), sorted by key.
 GivenParams table_params(lua_State* L, int index, const char* what);

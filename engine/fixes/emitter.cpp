@@ -1,28 +1,45 @@
-// emitter: an inlet. Fluid enters through an opening, a rectangle (sides a along u, b along
-// v) or a disc (radius r) centred at c in the plane normal to n, at the velocity U (a speed
-// along n, or a vector whose part along n is positive), from `start` to `stop`.
+// emitter: an inlet. Fluid enters through an opening, a rectangle or a disc with normal n
+// (engine/fixes/emitter_opening.hpp: its N sites), at the velocity U, from `start` to `stop`.
+// U is a speed along n or a vector, each a constant or a function of the time and the place,
+// U(t, x) (a Lua function: engine/geometry/space_time_function.hpp).
 //
-// Particles come in layers, each particle with the lattice's mass m for the spacing s (the
-// mass rule of pbf.lattice, so that the fluid enters at rest density); each stands for its
-// rest volume V = m / rho0. A layer holds N sites in the opening's plane: for a rectangle
-// na x nb of them, na = round(a/s) and nb = round(b/s), at the centres of na x nb equal cells
-// of the opening; for a disc the N = round(pi r^2 / s^2) sites of the square lattice of
-// spacing s nearest its centre. Layers follow one another at the distance L = N V / A (A the
-// opening's area, a b or pi r^2; L is s within a few percent), so that the mass rate is
-//   N m (U . n) / L = rho0 A (U . n),
-// the set one. The distance the fluid has advanced since the last layer is integrated step by
-// step at the start of each step (the exchange stage), D += (U . n) dt, and each time it
-// reaches L a layer enters, D - L ahead of the opening (where it would be had it entered on
-// time), and D -= L.
+// Particles have the lattice's mass m for the spacing s (the mass rule of pbf.lattice, so that
+// the fluid enters at rest density); each stands for its rest volume V = m / rho0. Each site
+// stands for an equal part A / N of the opening's area A, and the particles of a site follow
+// one another at the distance L = N V / A (L is s within a few percent), so that site k's mass
+// rate is m (U_k . n) / L = rho0 (A / N) (U_k . n), and the opening's
+//   sum_k rho0 (A / N) (U_k . n) = rho0 A (U . n)            for a constant U,
+//                                ~ rho0 integral (U . n) dA   for a profile
+// (the midpoint rule over the sites' cells). Each site integrates its own advance at the start
+// of each step (the exchange stage),
+//   D_k += (U_k . n) dt,   U_k = U(t + dt/2, x_k),
+// the midpoint rule in time (exact for a velocity linear in t); each time D_k reaches L a
+// particle enters at site k with the velocity U_k, D_k - L ahead of the opening (where it
+// would be had it entered on time), and D_k -= L. A U the same at every site keeps every D_k
+// the same: the particles enter in layers of N. Per site, not at the opening's mean advance,
+// so that with a profile the fluid enters at rest density at every site: layers at the mean
+// advance would crowd a slow site's particles onto the last layer's.
 //
-// A layer that would land in fluid (fluid within s/2 of its plane over the opening) waits: D
-// stays at L until there is room, and the log says so once. Sites inside a solid are left out.
+// A function may give a zero normal speed (the inflow pauses there: the site lets nothing in,
+// not even its first particle), not a negative one (the fluid would go back through the
+// opening), nor a speed beyond 1e6 m/s or a value that is not finite: each stops the run,
+// naming the parameter, the time and the place. The function is called at every open site
+// at each step, in site order, in serial code (a Lua state belongs to one thread) and on every
+// rank alike: every rank has the same D_k, and a function with state of its own sees the
+// calls one process makes. It is not saved in a restart (the script gives it again); the D_k
+// are.
+//
+// The particles due in a step that would land in fluid (fluid within s/2 of where one enters,
+// along n, over its site's cell; for a layer: within s/2 of its plane over the opening) wait:
+// their D_k stay at L until there is room, and the log says so once. Sites inside a solid are
+// left out.
 //
 // An inlet zone (`buffer` > 0, for an opening under water or against a wall, where the fluid
 // ahead would block it): after each step's velocity update the particles over the opening
-// within `buffer` ahead of it (and s/2 behind) move at U exactly, so that the zone feeds the
-// fluid ahead at the set rate and no fluid flows back over the opening (DualSPHysics's inlet
-// buffer, simplified: the zone's particles are fluid, their velocity imposed).
+// within `buffer` ahead of it (and s/2 behind) move at the U_k of the site whose cell they are
+// over, so that the zone feeds the fluid ahead at the set rate and no fluid flows back over
+// the opening (DualSPHysics's inlet buffer, simplified: the zone's particles are fluid, their
+// velocity imposed).
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -33,7 +50,9 @@
 #include "engine/core/particle_flow.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/distributed/comm.hpp"
+#include "engine/fixes/emitter_opening.hpp"
 #include "engine/geometry/solid_body.hpp"
+#include "engine/geometry/space_time_function.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/sph/mass.hpp"
@@ -45,53 +64,29 @@ namespace {
 
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 Vec3 scaled(const Vec3& a, double k) { return {a[0] * k, a[1] * k, a[2] * k}; }
-Vec3 unit(const Vec3& a) { return scaled(a, 1 / std::sqrt(dot(a, a))); }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 class Emitter : public Fix {
  public:
   Emitter(const std::string& id, const Params& p)
       : Fix(id, "emitter"),
-        disc_(p.string("shape") == "disc"),
-        center_(p.vec3("center")),
+        opening_(p),
         start_(p.real("start")),
         stop_(p.real("stop")),
         spacing_(p.has("spacing") ? p.real("spacing") : 0),
         buffer_(p.real("buffer")) {
-    const Vec3 normal = p.vec3("normal");
-    if (!(dot(normal, normal) > 0)) throw Error("parameter 'normal' is the zero vector: the opening needs a direction");
-    n_ = unit(normal);
     if (p.has("speed") == p.has("velocity"))
       throw Error("give the inflow as 'speed' (along the normal) or as 'velocity' (a vector), one of the two");
-    velocity_ = p.has("speed") ? scaled(n_, p.real("speed")) : p.vec3("velocity");
-    speed_ = dot(velocity_, n_);
-    if (!(speed_ > 0))
-      throw Error(fmt::format("parameter 'velocity' ({}, {}, {}) points along the opening or back into it: its part "
-                              "along the normal must be positive",
-                              velocity_[0], velocity_[1], velocity_[2]));
+    along_normal_ = p.has("speed");
+    inflow_ = p.function(along_normal_ ? "speed" : "velocity");
+    if (inflow_->constant()) {
+      const Vec3 value = inflow_->at(0, opening_.center());
+      velocity_ = along_normal_ ? scaled(opening_.normal(), value[0]) : value;
+      if (!(dot(velocity_, opening_.normal()) > 0))
+        throw Error(fmt::format("parameter 'velocity' ({}, {}, {}) points along the opening or back into it: its "
+                                "part along the normal must be positive",
+                                velocity_[0], velocity_[1], velocity_[2]));
+    }
     if (!(stop_ > start_)) throw Error(fmt::format("parameter 'stop' ({} s) must come after 'start' ({} s)", stop_, start_));
-    if (disc_ != p.has("radius") || disc_ == p.has("size"))
-      throw Error(disc_ ? "a disc opening takes 'radius' (not 'size')" : "a rectangle opening takes 'size' {a, b} (not 'radius')");
-    if (disc_) {
-      radius_ = p.real("radius");
-    } else {
-      size_ = p.vec2("size");
-    }
-    // The opening's axes: u along `axis` (or the coordinate axis the normal leans on least), v = n x u.
-    Vec3 axis = p.has("axis") ? p.vec3("axis") : Vec3{0, 0, 0};
-    if (!p.has("axis")) {
-      int least = 0;
-      for (int a = 1; a < 3; ++a)
-        if (std::fabs(n_[a]) < std::fabs(n_[least])) least = a;
-      axis[least] = 1;
-    }
-    const Vec3 along = {axis[0] - dot(axis, n_) * n_[0], axis[1] - dot(axis, n_) * n_[1], axis[2] - dot(axis, n_) * n_[2]};
-    if (!(dot(along, along) > 1e-12 * dot(axis, axis)))
-      throw Error("parameter 'axis' is along the normal: it must give a direction in the opening's plane");
-    u_ = unit(along);
-    v_ = cross(n_, u_);
   }
 
   std::vector<Stage> stages() const override {
@@ -113,59 +108,85 @@ class Emitter : public Fix {
     check_kernel_radius(sim.kernel_radius(), s, fmt::format("fix '{}' (emitter)", id()));
     mass_ = real(lattice_mass(s, sim.kernels(), sim.rest_density()));
     const Domain& d = sim.domain();
-    if (!d.contains(real(center_[0]), real(center_[1]), real(center_[2])))
-      throw Error(fmt::format("parameter 'center' ({}, {}, {}) is outside the domain", center_[0], center_[1], center_[2]));
-    const Vec3 ahead = {center_[0] + s * n_[0], center_[1] + s * n_[1], center_[2] + s * n_[2]};
-    if (!d.contains(real(ahead[0]), real(ahead[1]), real(ahead[2])))
+    const Vec3& c = opening_.center();
+    if (!d.contains(real(c[0]), real(c[1]), real(c[2])))
+      throw Error(fmt::format("parameter 'center' ({}, {}, {}) is outside the domain", c[0], c[1], c[2]));
+    const Vec3 ahead = opening_.point({0, 0}, s);
+    if (!d.contains(real(ahead[0]), real(ahead[1]), real(ahead[2]))) {
+      const Vec3& n = opening_.normal();
       throw Error(fmt::format("parameters 'center' and 'normal': the opening at ({}, {}, {}) faces out of the domain "
                               "along ({:.3g}, {:.3g}, {:.3g}): the fluid would leave it as it enters",
-                              center_[0], center_[1], center_[2], n_[0], n_[1], n_[2]));
-    lay_out_sites(s);
-    const double area = disc_ ? M_PI * radius_ * radius_ : size_[0] * size_[1];
-    layer_distance_ = double(sites_.size()) * double(mass_) / sim.rest_density() / area;
+                              c[0], c[1], c[2], n[0], n[1], n[2]));
+    }
+    opening_.lay_out(s);
+    const std::size_t sites = opening_.sites();
+    layer_distance_ = double(sites) * double(mass_) / sim.rest_density() / opening_.area();
     checked_ = false;
+    if (started_ && distance_.size() != sites) {
+      spdlog::warn("emitter '{}': its opening now has {} sites, {} before: every site starts a new layer", id(),
+                   sites, distance_.size());
+      started_ = false;
+    }
     if (!started_) {
-      distance_ = layer_distance_;  // the first layer enters at `start`, in the opening's plane
+      distance_.assign(sites, layer_distance_);  // the first layer enters at `start`, in the opening's plane
       started_ = true;
     }
+    // A distance the saved run left is below L (or L, waiting): a larger one (another L, a
+    // damaged restart) enters once, not layer after layer.
+    for (double& D : distance_) D = std::min(D, layer_distance_);
+    site_velocity_.assign(sites, velocity_);
+    site_velocity_real_.assign(sites, {real(velocity_[0]), real(velocity_[1]), real(velocity_[2])});
+    due_.assign(sites, 0);
+    due_sites_.reserve(sites);
   }
 
   void exchange(Simulation& sim) override {
-    const double t = sim.time(), dt = sim.timestep(), s = used_spacing_, L = layer_distance_;
+    const double t = sim.time(), dt = sim.timestep(), L = layer_distance_;
     if (!checked_) check_scene(sim);
     checked_ = true;
-    if (t + 0.5 * dt < start_ || t + 0.5 * dt >= stop_) return;  // the steps whose middle is within [start, stop)
-    distance_ += speed_ * dt;
+    const bool active = t + 0.5 * dt >= start_ && t + 0.5 * dt < stop_;  // the steps whose middle is in [start, stop)
+    if (!active && buffer_ == 0) return;
+    if (!inflow_->constant()) evaluate(t + 0.5 * dt);
+    if (!active) return;
+    const Vec3& n = opening_.normal();
+    for (std::size_t k = 0; k < opening_.sites(); ++k)
+      if (opening_.open(k)) distance_[k] += dot(site_velocity_[k], n) * dt;
     auto& P = sim.particles();
     const std::size_t before = P.size();
-    while (distance_ >= L) {
-      const double ahead = distance_ - L;
-      if (blocked(sim, before, ahead, s)) {
+    for (;;) {
+      bool any = false;
+      for (std::size_t k = 0; k < opening_.sites(); ++k) {  // (a site whose inflow pauses admits nothing)
+        due_[k] = opening_.open(k) && distance_[k] >= L && dot(site_velocity_[k], n) > 0;
+        any = any || due_[k];
+      }
+      if (!any) break;
+      if (blocked(sim, before)) {
         if (!said_blocked_)
           spdlog::warn("emitter '{}': fluid stands in front of the opening at t = {:.6g} s: it waits for room (said "
                        "once)",
                        id(), t);
         said_blocked_ = true;
-        distance_ = L;
+        for (std::size_t k = 0; k < opening_.sites(); ++k)
+          if (due_[k]) distance_[k] = L;
         break;
       }
-      add_layer(P, ahead);
-      distance_ -= L;
+      add_due(P);
+      for (std::size_t k = 0; k < opening_.sites(); ++k)
+        if (due_[k]) distance_[k] -= L;
     }
     emitted_.count_from(P, before);
   }
 
-  // The inlet zone moves at the set velocity.
+  // The inlet zone moves at its sites' velocities.
   void velocity_post(Simulation& sim) override {
     auto& P = sim.particles();
     const double s = used_spacing_;
-    const real v[3] = {real(velocity_[0]), real(velocity_[1]), real(velocity_[2])};
     real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     const real *x = P.x(), *y = P.y(), *z = P.z();
     for_particles(P.size(), [&](std::size_t i) {
-      const Vec3 d = {double(x[i]) - center_[0], double(y[i]) - center_[1], double(z[i]) - center_[2]};
-      const double along = dot(d, n_);
-      if (along < -0.5 * s || along >= buffer_ || !over_opening(dot(d, u_), dot(d, v_), 0)) return;
+      const auto o = opening_.offset({double(x[i]), double(y[i]), double(z[i])});
+      if (o[2] < -0.5 * s || o[2] >= buffer_ || !opening_.over(o[0], o[1], 0)) return;
+      const auto& v = site_velocity_real_[opening_.nearest_site(o[0], o[1])];
       vx[i] = v[0];
       vy[i] = v[1];
       vz[i] = v[2];
@@ -173,13 +194,17 @@ class Emitter : public Fix {
   }
 
   void save_state(ByteWriter& w) const override {
-    w.put(distance_);
+    w.put(static_cast<std::uint64_t>(distance_.size()));
+    w.put_array(distance_.data(), distance_.size());
     w.put(static_cast<std::uint8_t>(started_));
     w.put(static_cast<std::uint8_t>(said_blocked_));
     emitted_.save(w);
   }
   void restore_state(ByteReader& r) override {
-    distance_ = r.get<double>();
+    r.get_array(distance_, r.get<std::uint64_t>());
+    for (double D : distance_)
+      if (!(D >= 0 && D <= 1e300))
+        throw Error(fmt::format("{}: fix '{}' (emitter): a site's distance is {}", r.what(), id(), D));
     started_ = r.get<std::uint8_t>() != 0;
     said_blocked_ = r.get<std::uint8_t>() != 0;
     emitted_.restore(r);
@@ -202,50 +227,19 @@ class Emitter : public Fix {
     return s;
   }
 
-  // The opening's sites, as offsets (along u, along v) from the centre.
-  void lay_out_sites(double s) {
-    if (disc_ ? 2 * radius_ < s : (size_[0] < s || size_[1] < s))
-      throw Error(fmt::format("parameter '{}': the opening is narrower than one particle spacing ({} m)",
-                              disc_ ? "radius" : "size", s));
-    sites_.clear();
-    if (disc_) {  // the lattice sites nearest the centre, nearer first, then by row and column
-      const long half = static_cast<long>(std::ceil(radius_ / s)) + 1;
-      std::vector<std::array<double, 3>> candidates;  // (squared distance, a, b)
-      for (long j = -half; j <= half; ++j)
-        for (long i = -half; i <= half; ++i) {
-          const double a = double(i) * s, b = double(j) * s;
-          candidates.push_back({a * a + b * b, a, b});
-        }
-      std::stable_sort(candidates.begin(), candidates.end(), [](const auto& x, const auto& y) { return x[0] < y[0]; });
-      const auto count = static_cast<std::size_t>(std::max(1.0, std::round(M_PI * radius_ * radius_ / (s * s))));
-      for (std::size_t k = 0; k < count; ++k) sites_.push_back({candidates[k][1], candidates[k][2]});
-    } else {
-      const long na = std::lround(size_[0] / s), nb = std::lround(size_[1] / s);
-      const double da = size_[0] / double(na), db = size_[1] / double(nb);
-      for (long j = 0; j < nb; ++j)
-        for (long i = 0; i < na; ++i)
-          sites_.push_back({(double(i) + 0.5 - 0.5 * double(na)) * da, (double(j) + 0.5 - 0.5 * double(nb)) * db});
-    }
-  }
-
   // Once a run's solids have their maps: sites inside a solid are left out (all of them: an
   // error), and a sink over the opening would take the fluid as it enters.
   void check_scene(const Simulation& sim) {
-    std::vector<std::array<double, 2>> open;
-    for (const auto& site : sites_) {
-      const Vec3 q = at(site, 0);
-      bool inside = false;
+    std::vector<char> closed(opening_.sites(), 0);
+    for (std::size_t k = 0; k < opening_.sites(); ++k)
       for (const SolidBody* body : sim.solid_bodies()) {
-        const auto depth = body->depth_in_wall(q);
-        inside = inside || (depth && *depth > 0);
+        const auto depth = body->depth_in_wall(opening_.point(k, 0));
+        if (depth && *depth > 0) closed[k] = 1;
       }
-      if (!inside) open.push_back(site);
-    }
-    if (open.empty())
+    if (std::find(closed.begin(), closed.end(), 0) == closed.end())
       throw Error(fmt::format("fix '{}' (emitter): the opening lies inside a solid: no fluid can enter", id()));
-    sites_ = open;
-    const double s = used_spacing_;
-    const Vec3 ahead = at({0, 0}, 0.5 * s);
+    opening_.close(closed);
+    const Vec3 ahead = opening_.point({0, 0}, 0.5 * used_spacing_);
     const real q[3] = {real(ahead[0]), real(ahead[1]), real(ahead[2])};
     for (const auto& f : sim.fixes())
       if (f.get() != this && f->removes_at(q))
@@ -253,57 +247,96 @@ class Emitter : public Fix {
                                 id(), f->id(), f->style()));
   }
 
-  Vec3 at(const std::array<double, 2>& site, double ahead) const {
-    Vec3 q;
-    for (int a = 0; a < 3; ++a) q[a] = center_[a] + site[0] * u_[a] + site[1] * v_[a] + ahead * n_[a];
-    return q;
+  // U_k at time t at every open site, in site order.
+  void evaluate(double t) {
+    for (std::size_t k = 0; k < opening_.sites(); ++k) {
+      if (!opening_.open(k)) continue;
+      const Vec3 U = inflow_at(t, opening_.point(k, 0));
+      site_velocity_[k] = U;
+      site_velocity_real_[k] = {real(U[0]), real(U[1]), real(U[2])};
+    }
   }
 
-  // Whether any particle (of the `count` there before this step's layers) lies within s/2 of
-  // the layer's plane and within s/2 of the opening: on every rank's.
-  bool blocked(const Simulation& sim, std::size_t count, double ahead, double s) const {
+  // The function's U at time t at the point x, checked.
+  Vec3 inflow_at(double t, const Vec3& x) const {
+    const char* name = along_normal_ ? "speed" : "velocity";
+    Vec3 value;
+    try {
+      value = inflow_->at(t, x);
+    } catch (const Error& e) {
+      // The run loop names the step and the fix of a message that does not say where; one
+      // that names the script's line passes as it is, so it names the fix here.
+      if (e.located()) throw Error(fmt::format("fix '{}' (emitter): parameter '{}': {}", id(), name, e.what()), true);
+      throw Error(fmt::format("parameter '{}': {}", name, e.what()));
+    }
+    const Vec3 U = along_normal_ ? scaled(opening_.normal(), value[0]) : value;
+    const double normal = dot(U, opening_.normal());
+    const bool finite = std::isfinite(value[0]) && std::isfinite(U[0]) && std::isfinite(U[1]) && std::isfinite(U[2]);
+    if (finite && std::sqrt(dot(U, U)) <= 1e6 && normal >= 0) return U;
+    // What is wrong, said only now: this is called at every site at every step.
+    const std::string what = along_normal_ ? "a speed" : "a velocity";
+    std::string wrong;
+    if (!finite) wrong = what + " must be finite";
+    else if (normal >= 0) wrong = what + " must be at most 1e6 m/s";
+    else if (along_normal_) wrong = "a speed must be >= 0 (0 pauses the inflow)";
+    else wrong = fmt::format("its part along the normal, {} m/s, must be >= 0 (0 pauses the inflow)", normal);
+    auto number = [](double v) { return std::isnan(v) ? std::string("nan") : fmt::format("{}", v); };
+    const std::string gave =
+        along_normal_ ? number(value[0]) + " m/s"
+                      : fmt::format("{{{}, {}, {}}}", number(value[0]), number(value[1]), number(value[2]));
+    throw Error(fmt::format("parameter '{}': {} at t = {} s, (x, y, z) = ({:.6g}, {:.6g}, {:.6g}) gave {}: {}", name,
+                            inflow_->description(), t, x[0], x[1], x[2], gave, wrong));
+  }
+
+  // Whether any particle (of the `count` there before this step's) lies within s/2 of where a
+  // due site's particle enters, along n, and over that site's cell (at the opening's edge, up
+  // to s/2 beyond it): on every rank's.
+  bool blocked(const Simulation& sim, std::size_t count) const {
     const auto& P = sim.particles();
+    const double s = used_spacing_, L = layer_distance_;
     std::int64_t found = 0;
 #pragma omp parallel for schedule(static) reduction(+ : found)
     for (std::size_t i = 0; i < count; ++i) {
-      const Vec3 d = {double(P.x()[i]) - center_[0], double(P.y()[i]) - center_[1], double(P.z()[i]) - center_[2]};
-      if (std::fabs(dot(d, n_) - ahead) >= 0.5 * s) continue;
-      found += over_opening(dot(d, u_), dot(d, v_), 0.5 * s);
+      const auto o = opening_.offset({double(P.x()[i]), double(P.y()[i]), double(P.z()[i])});
+      if (!opening_.over(o[0], o[1], 0.5 * s)) continue;
+      const std::size_t k = opening_.nearest_site(o[0], o[1]);
+      found += due_[k] && std::fabs(o[2] - (distance_[k] - L)) < 0.5 * s;
     }
     return (P.distributed() ? comm::sum(found) : found) > 0;
   }
 
-  // Whether in-plane offsets (a, b) from the centre lie over the opening, widened by `margin`.
-  bool over_opening(double a, double b, double margin) const {
-    if (disc_) return a * a + b * b < (radius_ + margin) * (radius_ + margin);
-    return std::fabs(a) < 0.5 * size_[0] + margin && std::fabs(b) < 0.5 * size_[1] + margin;
-  }
-
-  // One layer, `ahead` in front of the opening: each rank its share of the sites, numbered as
-  // one process numbers them.
-  void add_layer(Particles& P, double ahead) {
+  // The due sites' particles, each D_k - L in front of the opening: each rank its share,
+  // numbered as one process numbers them.
+  void add_due(Particles& P) {
+    due_sites_.clear();  // (kept from step to step: a step allocates nothing)
+    for (std::size_t k = 0; k < opening_.sites(); ++k)
+      if (due_[k]) due_sites_.push_back(k);
     const std::size_t first = P.size();
-    const Particles::Share share = P.share(sites_.size());
-    const real v[3] = {real(velocity_[0]), real(velocity_[1]), real(velocity_[2])};
-    for (std::size_t k = share.first; k < share.end; ++k) {
-      const Vec3 q = at(sites_[k], ahead);
+    const Particles::Share share = P.share(due_sites_.size());
+    for (std::size_t j = share.first; j < share.end; ++j) {
+      const std::size_t k = due_sites_[j];
+      const Vec3 q = opening_.point(k, distance_[k] - layer_distance_);
       const real x[3] = {real(q[0]), real(q[1]), real(q[2])};
-      P.add(x, v, mass_);
+      P.add(x, site_velocity_real_[k].data(), mass_);
     }
     P.finish_source(first);
   }
 
-  bool disc_;
-  Vec3 center_, n_{}, u_{}, v_{}, velocity_{};
-  Vec2 size_{0, 0};
-  double radius_ = 0, speed_ = 0, start_, stop_, spacing_;
+  Opening opening_;
+  bool along_normal_ = false;  // `speed` given: U = speed n
+  SpaceTimeFunctionPtr inflow_;
+  Vec3 velocity_{};             // a constant U (else 0 until evaluated)
+  double start_, stop_, spacing_;
   double buffer_;               // the inlet zone's depth (0: none)
-  double layer_distance_ = 0;  // L: a layer enters each time the fluid advances this far
+  double layer_distance_ = 0;  // L: a site's particle enters each time the fluid there advances this far
   double used_spacing_ = 0;    // the spacing of the last run
   real mass_ = 0;
-  std::vector<std::array<double, 2>> sites_;
-  // State: the distance advanced since the last layer, and what has entered.
-  double distance_ = 0;
+  std::vector<Vec3> site_velocity_;                    // U_k of this step
+  std::vector<std::array<real, 3>> site_velocity_real_;  // the same, as the particles hold it
+  std::vector<char> due_;                              // the sites whose particle enters in this round
+  std::vector<std::size_t> due_sites_;                 // the same, listed
+  // State: the distance advanced at each site since its last particle, and what has entered.
+  std::vector<double> distance_;
   bool started_ = false, said_blocked_ = false, checked_ = false;
   ParticleFlow emitted_;
 };
@@ -328,14 +361,19 @@ void register_emitter(StyleRegistry& r) {
                     "least, made normal to it)",
                     true}
               .magnitude_at_most(1e6),
-          ParamSpec{"speed", ParamType::Real, std::nullopt, "m/s", "the inflow speed along the normal", true}
+          ParamSpec{"speed", ParamType::RealFunction, std::nullopt, "m/s",
+                    "the inflow speed along the normal, or function(t, x, y, z) giving it at time t at a site (x, y, "
+                    "z) of the opening (>= 0: 0 pauses the inflow)",
+                    true}
               .above_within(0, 1e6),
-          ParamSpec{"velocity", ParamType::Vector3, std::nullopt, "m/s",
-                    "the inflow velocity, instead of 'speed' (its part along the normal must be positive)", true}
+          ParamSpec{"velocity", ParamType::Vector3Function, std::nullopt, "m/s",
+                    "the inflow velocity, instead of 'speed' (its part along the normal positive), or function(t, x, "
+                    "y, z) giving {ux, uy, uz} at time t at a site (x, y, z) (that part >= 0)",
+                    true}
               .magnitude_at_most(1e6),
           ParamSpec{"buffer", ParamType::Real, 0.0, "m",
-                    "an inlet zone this deep ahead of the opening, whose particles move at the set velocity (for an "
-                    "opening under water or at a wall; 0: none)"}
+                    "an inlet zone this deep ahead of the opening, whose particles move at the set velocity (that of "
+                    "the site they are over; for an opening under water or at a wall; 0: none)"}
               .within(0, 1e6),
           ParamSpec{"start", ParamType::Real, 0.0, "s", "when the fluid starts to enter"}.magnitude_at_most(1e12),
           ParamSpec{"stop", ParamType::Real, 1e12, "s", "when it stops"}.magnitude_at_most(1e12),

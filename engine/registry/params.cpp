@@ -7,6 +7,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/names.hpp"
 #include "engine/geometry/motion.hpp"
+#include "engine/geometry/space_time_function.hpp"
 
 namespace pbf {
 
@@ -21,6 +22,8 @@ const char* type_name(ParamType type) {
     case ParamType::PointList: return "list of points {{x, y, z}, ...}";
     case ParamType::Motion: return "motion: function(t) or pbf.keyframes";
     case ParamType::Vector2: return "pair {a, b}";
+    case ParamType::RealFunction: return "number or function(t, x, y, z)";
+    case ParamType::Vector3Function: return "vector {x, y, z} or function(t, x, y, z)";
   }
   return "?";
 }
@@ -44,6 +47,8 @@ std::string format_value(const ParamValue& value) {
     }
     std::string operator()(const MotionPtr& v) const { return v ? v->description() : "none"; }
     std::string operator()(const Vec2& v) const { return fmt::format("{{{}, {}}}", v[0], v[1]); }
+    std::string operator()(const ScriptFunctionPtr& v) const { return v ? v->description() : "none"; }
+    std::string operator()(const SpaceTimeFunctionPtr& v) const { return v ? v->description() : "none"; }
   } visitor;
   return std::visit(visitor, value);
 }
@@ -51,17 +56,20 @@ std::string format_value(const ParamValue& value) {
 namespace {
 
 const char* given_type(const ParamValue& value) {
-  switch (value.index()) {
-    case 0: return "number";
-    case 1: return "integer";
-    case 2: return "boolean";
-    case 3: return "string";
-    case 4: return "vector";
-    case 5: return "list of names";
-    case 6: return "list of points";
-    case 8: return "pair";
-    default: return "motion";
-  }
+  struct {
+    const char* operator()(double) const { return "number"; }
+    const char* operator()(std::int64_t) const { return "integer"; }
+    const char* operator()(bool) const { return "boolean"; }
+    const char* operator()(const std::string&) const { return "string"; }
+    const char* operator()(const Vec3&) const { return "vector"; }
+    const char* operator()(const Names&) const { return "list of names"; }
+    const char* operator()(const Points&) const { return "list of points"; }
+    const char* operator()(const MotionPtr&) const { return "motion"; }
+    const char* operator()(const Vec2&) const { return "pair"; }
+    const char* operator()(const ScriptFunctionPtr&) const { return "function"; }
+    const char* operator()(const SpaceTimeFunctionPtr&) const { return "function of time and place"; }
+  } visitor;
+  return std::visit(visitor, value);
 }
 
 // Converts a given value to the declared type, or returns nothing if it does not fit.
@@ -98,10 +106,21 @@ std::optional<ParamValue> coerce(const ParamValue& value, ParamType type) {
       return std::nullopt;
     case ParamType::Motion:
       if (auto* v = std::get_if<MotionPtr>(&value)) return *v;
+      if (auto* f = std::get_if<ScriptFunctionPtr>(&value)) return (*f)->motion();
       return std::nullopt;
     case ParamType::Vector2:
       if (auto* v = std::get_if<Vec2>(&value)) return *v;
       return std::nullopt;
+    case ParamType::RealFunction:
+    case ParamType::Vector3Function: {
+      // A constant stays a number or a vector, checked as one (finite, within the range);
+      // Params::function makes it a function when asked.
+      const bool real = type == ParamType::RealFunction;
+      if (auto constant = coerce(value, real ? ParamType::Real : ParamType::Vector3)) return constant;
+      if (auto* f = std::get_if<ScriptFunctionPtr>(&value)) return (*f)->of_time_and_place(real ? 1 : 3);
+      if (auto* f = std::get_if<SpaceTimeFunctionPtr>(&value)) return *f;
+      return std::nullopt;
+    }
   }
   return std::nullopt;
 }
@@ -218,5 +237,11 @@ Vec2 Params::vec2(const std::string& name) const { return std::get<Vec2>(at(name
 const Names& Params::names(const std::string& name) const { return std::get<Names>(at(name)); }
 const Points& Params::points(const std::string& name) const { return std::get<Points>(at(name)); }
 MotionPtr Params::motion(const std::string& name) const { return std::get<MotionPtr>(at(name)); }
+SpaceTimeFunctionPtr Params::function(const std::string& name) const {
+  const ParamValue& value = at(name);
+  if (auto* f = std::get_if<SpaceTimeFunctionPtr>(&value)) return *f;
+  if (auto* d = std::get_if<double>(&value)) return std::make_shared<ConstantFunction>(Vec3{*d, 0, 0}, 1);
+  return std::make_shared<ConstantFunction>(std::get<Vec3>(value), 3);
+}
 
 }  // namespace pbf

@@ -14,9 +14,14 @@
 
 namespace pbf {
 
-class Motion;  // engine/geometry/motion.hpp: a solid's pose as a function of time
+class Motion;             // engine/geometry/motion.hpp: a solid's pose as a function of time
+class SpaceTimeFunction;  // engine/geometry/space_time_function.hpp: a value as a function of t and x
 
-enum class ParamType { Real, Integer, Bool, String, Vector3, StringList, PointList, Motion, Vector2 };
+// RealFunction and Vector3Function: a number or a vector, or a function of time and place
+// that gives one (an emitter's speed or velocity).
+enum class ParamType {
+  Real, Integer, Bool, String, Vector3, StringList, PointList, Motion, Vector2, RealFunction, Vector3Function
+};
 const char* type_name(ParamType type);
 
 using Vec3 = std::array<double, 3>;
@@ -24,7 +29,26 @@ using Vec2 = std::array<double, 2>;  // two lengths (a rectangle's sides)
 using Names = std::vector<std::string>;
 using Points = std::vector<Vec3>;
 using MotionPtr = std::shared_ptr<const Motion>;
-using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, Names, Points, MotionPtr, Vec2>;
+using SpaceTimeFunctionPtr = std::shared_ptr<const SpaceTimeFunction>;
+
+// A function a script gave as a parameter value. The binding cannot tell what a function is
+// for (it does not know the parameter's type); the schema does, and the check of a value asks
+// the function for what the parameter's type needs (scripting/lua_function.cpp makes them).
+class ScriptFunction {
+ public:
+  virtual ~ScriptFunction() = default;
+  // As a solid's motion: function(t) returning {translate = {x, y, z}, rotate = {rx, ry, rz}}.
+  virtual MotionPtr motion() const = 0;
+  // As a value of time and place: function(t, x, y, z) returning a number (components 1) or
+  // a vector {a, b, c} (components 3).
+  virtual SpaceTimeFunctionPtr of_time_and_place(int components) const = 0;
+  // "defined at FILE:LINE", for messages.
+  virtual std::string description() const = 0;
+};
+using ScriptFunctionPtr = std::shared_ptr<const ScriptFunction>;
+
+using ParamValue = std::variant<double, std::int64_t, bool, std::string, Vec3, Names, Points, MotionPtr, Vec2,
+                                ScriptFunctionPtr, SpaceTimeFunctionPtr>;
 
 std::string format_value(const ParamValue& value);
 
@@ -94,6 +118,8 @@ class Params {
   const Names& names(const std::string& name) const;
   const Points& points(const std::string& name) const;
   MotionPtr motion(const std::string& name) const;
+  // A RealFunction or Vector3Function parameter, a constant as a function too.
+  SpaceTimeFunctionPtr function(const std::string& name) const;
   bool has(const std::string& name) const { return values_.count(name) > 0; }
   const std::map<std::string, ParamValue>& values() const { return values_; }
 

@@ -960,6 +960,37 @@ def gen_lua_rules(g):
     add("motion_pivot_alone", "a pivot without a motion: refused",
         scene + pipe + ['@pbf.fix("ball", "solid", {shape = "sphere", center = {0.06, 0.06, 0.06}, radius = 0.02, '
                         "pivot = {0, 0, 0}})", "pbf.run(1)"], "refused", "line", "pivot")
+    g.section("Emitters whose speed or velocity is a Lua function of time and place: functions that fail, "
+              "return no number or vector, or a value that is not finite, too fast, or back into the opening (at "
+              "once or later); each names the emitter and the parameter. A zero speed pauses the inflow (legal).")
+    jet = ('pbf.fix("jet", "emitter", {center = {0.08, 0.05, 0.08}, normal = {0, 0, -1}, size = {0.02, 0.02}, '
+           '%s})')
+    fn = "function(t, x, y, z) %s end"
+    for label, inflow, outcome, kind, says in [
+            ("error", "velocity = " + fn % 'error("no inflow")', "refused", "file", "'jet' && velocity && no inflow"),
+            ("nil", "velocity = " + fn % "", "refused", "file", "'jet' && velocity && returned a nil"),
+            ("number", "velocity = " + fn % "return 1", "refused", "file", "'jet' && velocity && returned a number"),
+            ("short", "velocity = " + fn % "return {0, -1}", "refused", "file", "'jet' && velocity && 2 values"),
+            ("string", "velocity = " + fn % 'return {0, 0, "down"}', "refused", "file",
+             "'jet' && velocity && component 3"),
+            ("back", "velocity = " + fn % "return {0, 0, 1}", "refused", "file", "'jet' && velocity && normal"),
+            ("nan", "velocity = " + fn % "return {0/0, 0, -1}", "refused", "file", "'jet' && velocity && finite"),
+            ("inf", "velocity = " + fn % "return {0, 0, -1/0}", "refused", "file", "'jet' && velocity && finite"),
+            ("huge", "velocity = " + fn % "return {0, 0, -1e300}", "refused", "file", "'jet' && velocity && 1e6"),
+            ("nan_later", "velocity = " + fn % "return {0, 0, t > 0.002 and 0/0 or -1}", "refused", "file",
+             "'jet' && velocity && t = 0.002 && finite"),
+            ("yield", "velocity = " + fn % "coroutine.yield()", "refused", "file", "'jet' && velocity"),
+            ("table_error", "velocity = " + fn % "error({})", "refused", "file", "'jet' && velocity"),
+            ("speed_table", "speed = " + fn % "return {0, 0, -1}", "refused", "file", "'jet' && speed && not a number"),
+            ("speed_negative", "speed = " + fn % "return -1", "refused", "file", "'jet' && speed && >= 0"),
+            ("speed_nan", "speed = " + fn % "return 0/0", "refused", "file", "'jet' && speed && finite"),
+            ("speed_string", 'speed = "fast"', "refused", "line", "speed"),
+            ("keyframes", "velocity = pbf.keyframes{{t = 0}}", "refused", "line", "velocity"),
+            ("both", "speed = 1, velocity = " + fn % "return {0, 0, -1}", "refused", "line", "one of the two"),
+            ("zero", "velocity = " + fn % "return {0, 0, 0}", "accepted", "file", ""),
+            ("ramp", "speed = " + fn % "return math.min(t / 0.002, 1)", "accepted", "file", "")]:
+        add(f"emitter_fn_{label}", f"an emitter with {inflow}: {outcome}",
+            scene + pipe + ["@" + jet % inflow, "pbf.run(3)"], outcome, kind, says)
     text, _ = lua_script("-v given but never read: one warning naming it", scene + pipe + ["pbf.run(1)"])
     g.file("lua_var_unread.lua", text)
     g.case("lua_var_unread", f"run {d}/lua_var_unread.lua -v partcles=3", "warned", "partcles")

@@ -6,8 +6,10 @@
 -- Writes OUT/f_*.txt (id, position, velocity), OUT/thermo.csv (the count, what came in and
 -- what went out), OUT/probes.csv (a probe and a gauge beside the faces y = 0 and y = 0.2).
 -- -v solver=wcsph for WCSPH; -v periodic=y makes the tank periodic across its width (the pool
--- fills the period; the jet's sheet spreads through the faces); -v read=FILE continues from a
--- restart, -v save=FILE writes one at the end; -v steps=N runs until step N (default 200).
+-- fills the period; the jet's sheet spreads through the faces); -v profile=1 gives the jet's
+-- velocity as a function of time and place (a profile across the opening that grows in time),
+-- which every rank calls alike; -v read=FILE continues from a restart, -v save=FILE writes one
+-- at the end; -v steps=N runs until step N (default 200).
 local s = 0.02
 local wcsph = var.solver == "wcsph"
 if var.read then
@@ -27,7 +29,15 @@ else
   pbf.fix("pbf", "pbf", {iterations = 4})
 end
 pbf.fix("walls", "box", {})
-pbf.fix("jet", "emitter", {center = {0.58, 0.1, 0.3}, normal = {-1, 0, 0}, size = {0.06, 0.04}, speed = 1.0})
+local jet = {center = {0.58, 0.1, 0.3}, normal = {-1, 0, 0}, size = {0.06, 0.04}, speed = 1.0}
+if var.profile then
+  jet.speed = nil
+  jet.velocity = function(t, x, y, z)
+    local across = (y - 0.1) / 0.03
+    return {-(0.5 + 2 * t) * (1 - across * across), 0.2 * across, 0}
+  end
+end
+pbf.fix("jet", "emitter", jet)
 pbf.fix("drain", "outflow", {region = "box", lo = {0.3, 0, 0}, hi = {0.4, 0.2, 0.03}})
 pbf.compute("n", "count")
 pbf.compute("in", "flow", {fix = "jet"})
