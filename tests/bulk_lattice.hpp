@@ -45,6 +45,16 @@ inline double gradient_norm(double s, const Kernels& K) {
   return -V / 3 * lattice_sum(s, K, [&](double, double, double, double r2) { return K.grad_factor(real(r2)) * r2; });
 }
 
+// The Laplacian viscosity's lattice factor, -V sum_j g r_j^2 r_z^2 / (r_j^2 + 0.01 h^2): Morris's
+// sum 2 V sum_j (-g) r^2 / (r^2 + eta^2) (u_j - u_i) of a quadratic field u = z^2 / 2 (whose
+// Laplacian is 1) on the lattice, which sph_viscosity divides its sum by; 0.922 at h = 2s.
+inline double laplacian_factor(double s, const Kernels& K) {
+  const double V = bulk_volume(s, K), eta2 = 0.01 * double(K.h2);
+  return -V * lattice_sum(s, K, [&](double, double, double rz, double r2) {
+    return K.grad_factor(real(r2)) * r2 * rz * rz / (r2 + eta2);
+  });
+}
+
 // The rounding of an SPH pair sum at a bulk particle of a block whose sites reach L = reach s
 // from the origin, relative to the sum of its terms' sizes. Positions are stored to
 // u |x| <= u L, so an offset r_j (|r_j| >= s) errs by up to 2 u L / s of itself; the kernel

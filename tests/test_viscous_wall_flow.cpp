@@ -11,9 +11,9 @@
 // moving its decay by 38% at t = 0.02 s. (The mode sin(pi z / H) would carry a net flux that
 // the end walls stop: a counter-flow.)
 //
-// The SPH sum decays the wave at nu_eff(k) k^2, nu_eff(k) k^2 = nu V sum_j (-g) r^2 /
-// (r^2 + eta^2) 2 (1 - cos k r_z) (test_viscosity.cpp's shear wave; 0.91 nu at 16 spacings a
-// wavelength, h = 2s). The rate is measured on the particles of the middle (4 spacings either
+// The SPH sum decays the wave at nu_eff(k) k^2, nu_eff(k) k^2 = nu / kappa V sum_j (-g) r^2 /
+// (r^2 + eta^2) 2 (1 - cos k r_z) (test_viscosity.cpp's shear wave, kappa the lattice factor
+// sph_viscosity divides out; nu_eff = 0.987 nu at 16 spacings a wavelength, h = 2s). The rate is measured on the particles of the middle (4 spacings either
 // way along x, 3 along y: 6 and 5 spacings inside the flat parts of f and g, where diffusion
 // reaches sqrt(nu t) = 1.4 spacings by the end), as the decay of the wave's amplitude
 // A = sum u_x sin(k z) / sum sin^2(k z) from t = 0 to 0.04 s (nu k^2 t = 0.3).
@@ -24,9 +24,9 @@
 // sin^2(k z) / sum sin^2: 1.0% for the two first layers, 7.7% for the two second ones, so
 // about 0.5% of the rate; the leapfrog's error is (rate dt)^2 ~ 1e-6; the taper's diffusion
 // stays out of the middle; the pressure's noise averages out of A. Measured (2026-11-28, float
-// and double alike): 6.93/s against 7.02/s (-1.3%; to 0.02 and 0.06 s, -0.9% and -0.6%);
-// nu k^2 = 7.71/s. Without the term (free-slip plates: no_slip = false) the wall layers are not
-// held and the rate is 5.18/s, 26% low; the test asks for at least 10% low. 2.5 s a run.
+// and double alike): 7.51/s against 7.61/s (-1.3%); nu k^2 = 7.71/s. Without the term
+// (free-slip plates: no_slip = false) the wall layers are not held and the rate is 5.54/s, 27%
+// low; the test asks for at least 10% low. 2.5 s a run.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -107,9 +107,9 @@ double decay_rate(bool no_slip) {
 
 TEST(ViscousWall, AShearWaveBetweenNoSlipPlatesDecaysAtItsViscosity) {
   const Kernels K(kH);
-  const double V = test::bulk_volume(kS, K), eta2 = 0.01 * kH * kH;
+  const double V = test::bulk_volume(kS, K), eta2 = 0.01 * kH * kH, kappa = test::laplacian_factor(kS, K);
   const double expected = test::lattice_sum(kS, K, [&](double, double, double rz, double r2) {
-    return -2 * kNu * V * K.grad_factor(real(r2)) * r2 / (r2 + eta2) * (1 - std::cos(kK * rz));
+    return -2 * kNu / kappa * V * K.grad_factor(real(r2)) * r2 / (r2 + eta2) * (1 - std::cos(kK * rz));
   });
   const double with = decay_rate(true), without = decay_rate(false);
   EXPECT_NEAR(with, expected, 0.03 * expected) << "nu k^2 = " << kNu * kK * kK;

@@ -4,21 +4,22 @@
 //
 // On the lattice (h = 2s, V = 1 / sum W the bulk volume), with the field's u_j - u_i at the
 // sites r_j = x_j - x_i, Morris's sum at a particle whose neighbours are all at rest density is
-//   a_x = 2 nu V sum_j (-g(r_j)) r_j^2 / (r_j^2 + eta^2) (u_j - u_i)   (gradW = g r_vec),
-// over the sites present. The wall adds nu (1 + rho0/rho_i) Psi(d) (u_w - u_i), which for the
+//   a_x = 2 nu' V sum_j (-g(r_j)) r_j^2 / (r_j^2 + eta^2) (u_j - u_i)   (gradW = g r_vec),
+// over the sites present, nu' = nu / kappa with kappa = V sum_j (-g) r^2 / (r^2 + eta^2) r_z^2
+// the sum's lattice factor (0.922 at h = 2s), which sph_viscosity divides out. The wall adds
+// nu' (1 + rho0/rho_i) Psi(d) (u_w - u_i), which for the
 // first layer (d = s/2) equals what the lattice sites behind the wall would give were their
 // velocities the linear continuation u_j = u_w + (u_i - u_w) z_j / d (the wall's delta_v is
 // chosen so). Hence:
 //  - a linear shear u = U z / H: the first layer gets exactly the full lattice's sum, zero;
 //    the second layer (d = 3s/2) sees no lattice site behind the wall (all lie at h or beyond)
-//    but a sliver of the wall's continuum (within h - delta_v): 2 nu Psi(3s/2) (0 - u_i);
-//  - a parabola u = U z (H - z) between floor and ceiling: the bulk gets nu_eff u'' =
-//    -2 U nu_eff, nu_eff = nu V sum_j (-g) r^2 / (r^2 + eta^2) r_z^2 (the lattice factor of the
-//    shear-wave test at k -> 0, 0.92 at h = 2s); the first layer misses the curvature behind the
-//    wall, which the linear continuation lacks: -2 U nu_eff (1 - eps_1), with
-//    eps_1 nu_eff = nu V sum_{behind} (-g) r^2 / (r^2 + eta^2) z_j (z_j - d) (0.25 at h = 2s);
+//    but a sliver of the wall's continuum (within h - delta_v): 2 nu' Psi(3s/2) (0 - u_i);
+//  - a parabola u = U z (H - z) between floor and ceiling: the bulk gets nu' kappa u'' =
+//    nu u'' = -2 U nu, the exact Laplacian's; the first layer misses the curvature behind the
+//    wall, which the linear continuation lacks: -2 U nu (1 - eps_1), with
+//    eps_1 nu = nu' V sum_{behind} (-g) r^2 / (r^2 + eta^2) z_j (z_j - d) (0.25 at h = 2s);
 //  - a plate moving at U_w under fluid at rest: the first layer gets
-//    nu (1 + rho0 / rho_i) Psi(s/2) U_w = nu (1 + rho0 / rho_i) U_w 2 B / s, B the lattice
+//    nu' (1 + rho0 / rho_i) Psi(s/2) U_w = nu' (1 + rho0 / rho_i) U_w 2 B / s, B the lattice
 //    sites' sum behind the wall, V sum (-g) r^2 / (r^2 + eta^2) |r_z|.
 // Tolerances: the rounding of the pair sums (tests/bulk_lattice.hpp) and the neighbours'
 // densities, which differ from rho0 near the wall (the wall density's continuum against the
@@ -81,9 +82,12 @@ bool mid_slab(double x, double y) {
 // The layer a particle is in, 1 at the floor.
 int layer(double z) { return static_cast<int>(std::lround(z / kS + 0.5)); }
 
-// Morris's pair weight on the lattice, 2 nu V (-g) r^2 / (r^2 + eta^2).
+// The coefficient of sph_viscosity's sum, nu' = nu / kappa.
+double nu_sum(const Kernels& K) { return kNu / test::laplacian_factor(kS, K); }
+
+// Morris's pair weight on the lattice, 2 nu' V (-g) r^2 / (r^2 + eta^2).
 double weight(const Kernels& K, double r2) {
-  return -2 * kNu * test::bulk_volume(kS, K) * K.grad_factor(real(r2)) * r2 / (r2 + 0.01 * kH * kH);
+  return -2 * nu_sum(K) * test::bulk_volume(kS, K) * K.grad_factor(real(r2)) * r2 / (r2 + 0.01 * kH * kH);
 }
 
 // The largest |rho0 / rho - 1| (the density the viscosity used: the summed one) over the
@@ -141,10 +145,10 @@ TEST(ViscousWall, ALinearShearAboveANoSlipFloorFeelsNoForce) {
     return rz < -kS / 2 ? weight(K, r2) * U * -rz / kTop : 0.0;
   });
   const double tolerance = (test::pair_sum_rounding(kNx / 2.0) + density_deviation(with, false)) * sizes;
-  // The second layer: the wall's continuum within h - delta_v of it, 2 nu Psi(3s/2) (0 - u).
+  // The second layer: the wall's continuum within h - delta_v of it, 2 nu' Psi(3s/2) (0 - u).
   NoSlipWall wall;
   wall.prepare(with);
-  const double second = -2 * kNu * double(wall.share(real(1.5 * kS))) * U * 1.5 * kS / kTop;
+  const double second = -2 * nu_sum(K) * double(wall.share(real(1.5 * kS))) * U * 1.5 * kS / kTop;
   const Layers a = accelerations(with), a0 = accelerations(without);
   ASSERT_EQ(a.count[1], 36);  // the 6 x 6 mid-slab sites of a layer
   EXPECT_NEAR(a.a[1], 0, tolerance) << "the first layer, without the term: " << a0.a[1];
@@ -159,8 +163,8 @@ TEST(ViscousWall, ALinearShearAboveANoSlipFloorFeelsNoForce) {
   RecordProperty("tolerance", fmt::format("{:.3g}", tolerance));
 }
 
-// A parabola between a no-slip floor and ceiling: -2 U nu_eff at every layer, but the first
-// (1 - eps_1: the curvature behind the wall) and the second (the wall continuum's sliver).
+// A parabola between a no-slip floor and ceiling: nu u'' = -2 U nu at every layer, but the
+// first (1 - eps_1: the curvature behind the wall) and the second (the wall continuum's sliver).
 TEST(ViscousWall, AParabolaBetweenNoSlipPlatesHasItsLaplacianAtEveryLayer) {
   const double U = 0.1 / (kTop * kTop / 4);  // 0.1 m/s midway
   auto u = [&](double z) { return U * z * (kTop - z); };
@@ -169,13 +173,10 @@ TEST(ViscousWall, AParabolaBetweenNoSlipPlatesHasItsLaplacianAtEveryLayer) {
   run_slab(with, parabola, true, {{"box", box(true)}});
   run_slab(without, parabola, true, {{"box", box(false)}});
   const Kernels& K = with.kernels();
-  // nu_eff (the full lattice's second moment over 2) and eps_1 nu_eff (the sites behind the
-  // floor, z_j = d + r_z < 0 for the first layer at d = s/2), and the terms' sizes, weight
-  // times |u_j - u_i| <= |u'| |r_z| + U r_z^2 with |u'| <= U H.
+  // The bulk's -2 U nu, eps_1 nu (the sites behind the floor, z_j = d + r_z < 0 for the
+  // first layer at d = s/2), and the terms' sizes, weight times |u_j - u_i| <= |u'| |r_z| +
+  // U r_z^2 with |u'| <= U H.
   const double d1 = kS / 2;
-  const double nu_eff = test::lattice_sum(kS, K, [&](double, double, double rz, double r2) {
-    return weight(K, r2) * rz * rz / 2;
-  });
   const double eps_nu = test::lattice_sum(kS, K, [&](double, double, double rz, double r2) {
     return rz < -d1 ? weight(K, r2) * (d1 + rz) * rz / 2 : 0.0;
   });
@@ -185,25 +186,25 @@ TEST(ViscousWall, AParabolaBetweenNoSlipPlatesHasItsLaplacianAtEveryLayer) {
   const double tolerance = (test::pair_sum_rounding(kNx / 2.0) + density_deviation(with, true)) * sizes;
   NoSlipWall wall;
   wall.prepare(with);
-  const double d2 = 1.5 * kS, sliver = -2 * kNu * double(wall.share(real(d2))) * u(d2);
+  const double d2 = 1.5 * kS, sliver = -2 * nu_sum(K) * double(wall.share(real(d2))) * u(d2);
   const Layers a = accelerations(with), a0 = accelerations(without);
   for (int k = 1; k <= kNz; ++k) {
     const int from_wall = std::min(k, kNz + 1 - k);
-    const double expected = -2 * U * nu_eff + (from_wall == 1 ? 2 * U * eps_nu : 0) + (from_wall == 2 ? sliver : 0);
-    EXPECT_NEAR(a.a[k], expected, tolerance) << "layer " << k << " (bulk: " << -2 * U * nu_eff << ")";
+    const double expected = -2 * U * kNu + (from_wall == 1 ? 2 * U * eps_nu : 0) + (from_wall == 2 ? sliver : 0);
+    EXPECT_NEAR(a.a[k], expected, tolerance) << "layer " << k << " (bulk: " << -2 * U * kNu << ")";
   }
   // Without the term the wall layers miss their slow side by far more than the tolerance.
   EXPECT_GT(a0.a[1] - a.a[1], 20 * tolerance);
-  RecordProperty("eps_1", fmt::format("{:.4f}", eps_nu / nu_eff));
-  RecordProperty("nu_eff_over_nu", fmt::format("{:.4f}", nu_eff / kNu));
-  RecordProperty("layers_1_2_3_over_bulk", fmt::format("{:.4f} {:.4f} {:.4f}", a.a[1] / (-2 * U * nu_eff),
-                                                       a.a[2] / (-2 * U * nu_eff), a.a[3] / (-2 * U * nu_eff)));
-  RecordProperty("without_1_2_over_bulk", fmt::format("{:.3f} {:.3f}", a0.a[1] / (-2 * U * nu_eff), a0.a[2] / (-2 * U * nu_eff)));
-  RecordProperty("tolerance_over_bulk", fmt::format("{:.3g}", tolerance / (2 * U * nu_eff)));
+  RecordProperty("eps_1", fmt::format("{:.4f}", eps_nu / kNu));
+  RecordProperty("kappa", fmt::format("{:.4f}", kNu / nu_sum(K)));
+  RecordProperty("layers_1_2_3_over_bulk", fmt::format("{:.4f} {:.4f} {:.4f}", a.a[1] / (-2 * U * kNu),
+                                                       a.a[2] / (-2 * U * kNu), a.a[3] / (-2 * U * kNu)));
+  RecordProperty("without_1_2_over_bulk", fmt::format("{:.3f} {:.3f}", a0.a[1] / (-2 * U * kNu), a0.a[2] / (-2 * U * kNu)));
+  RecordProperty("tolerance_over_bulk", fmt::format("{:.3g}", tolerance / (2 * U * kNu)));
 }
 
 // A plate sliding along x at U_w under fluid at rest (a solid with a keyframed motion): the
-// first layer is dragged along at nu (1 + rho0 / rho_i) U_w 2 B / s; the third feels nothing.
+// first layer is dragged along at nu' (1 + rho0 / rho_i) U_w 2 B / s; the third feels nothing.
 TEST(ViscousWall, AMovingPlateDragsTheFirstLayer) {
   const double Uw = 0.1;
   std::vector<Keyframes::Key> keys = {{0, Pose{{0, 0, 0}, {0, 0, 0}}}, {1, Pose{{Uw, 0, 0}, {0, 0, 0}}}};
@@ -215,7 +216,7 @@ TEST(ViscousWall, AMovingPlateDragsTheFirstLayer) {
   run_slab(sim, rest, false, {{"solid", plate}}, true);
   const Kernels& K = sim.kernels();
   const double B = test::lattice_sum(kS, K, [&](double, double, double rz, double r2) {
-    return rz < -kS / 2 ? weight(K, r2) / (2 * kNu) * -rz : 0.0;
+    return rz < -kS / 2 ? weight(K, r2) / (2 * nu_sum(K)) * -rz : 0.0;
   });
   // rho_i is the run's. The solid moved the first layer out to its contact distance and a
   // hair (1e-3 of its map's cell, h/4) before the run, and the map's d_eff on a flat wall
@@ -236,7 +237,7 @@ TEST(ViscousWall, AMovingPlateDragsTheFirstLayer) {
     if (!mid_slab(P.x()[i], P.y()[i])) continue;
     if (layer(P.z()[i]) == 1) {
       ++first;
-      const double expected = kNu * (1 + sim.rest_density() / rho[i]) * Uw * 2 * B / kS;
+      const double expected = nu_sum(K) * (1 + sim.rest_density() / rho[i]) * Uw * 2 * B / kS;
       EXPECT_NEAR(ax[i], expected, relative * expected);
     }
     if (layer(P.z()[i]) == 3) EXPECT_EQ(ax[i], 0);
@@ -301,7 +302,7 @@ TEST(ViscousWall, ANoSlipBoxStopsTouchingParticlesOnlyWithoutALaplacianViscosity
     const auto& P = sim.particles();
     for (std::size_t i = 0; i < P.size(); ++i) {
       if (!mid_slab(P.x()[i], P.y()[i]) || layer(P.z()[i]) > 2) continue;
-      // With the term, the first layer loses dt nu (1 + rho0/rho) Psi U, well below U / 10.
+      // With the term, the first layer loses dt nu' (1 + rho0/rho) Psi U, well below U / 10.
       if (layer(P.z()[i]) == 1 && !viscous)
         EXPECT_EQ(P.vx()[i], 0) << "a touching particle";
       else

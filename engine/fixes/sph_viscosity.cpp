@@ -4,14 +4,26 @@
 //       Pi_ij = -alpha c0 h mu_ij / rho_ij  where v_ij . x_ij < 0 (approaching), else 0,
 //       mu_ij = v_ij . x_ij / (|x_ij|^2 + 0.01 h^2),  rho_ij = (rho_i + rho_j) / 2
 //   laplacian (Morris et al. 1997), kinematic viscosity nu, in the form symmetric in i and j
-//   (so momentum is conserved; 2 nu m_j / rho_j when the densities are equal):
-//       a_i += sum_j nu m_j (1/rho_i + 1/rho_j) v_ij (x_ij . gradW_ij) / (|x_ij|^2 + 0.01 h^2)
-//     and, from each no-slip wall (a box or solid with no_slip = true and its wall density on),
-//       a_i += nu (1 + rho0 / rho_i) Psi(d) (v_wall - v_i)_t,
+//   (so momentum is conserved; 2 nu m_j / rho_j when the densities are equal), divided by
+//   the sum's lattice factor kappa:
+//       a_i += nu / kappa sum_j m_j (1/rho_i + 1/rho_j) v_ij (x_ij . gradW_ij) / (|x_ij|^2 + 0.01 h^2)
+//       kappa = -V sum_j g(r_j) r_j^2 z_j^2 / (r_j^2 + 0.01 h^2)   (gradW = g r_vec, V = m / rho0)
+//     over the run's rest lattice: the cubic lattice whose spacing gives the particle mass the
+//     rest density, at the run's h (engine/sph/mass.hpp, as the walls' deltas are calibrated).
+//     On it the sum gives a quadratic field kappa times its Laplacian (0.922 at h = 2s, 0.959 at
+//     3s: the lattice sum and the regularisation 0.01 h^2), so without the division a flow the
+//     viscosity sets runs 1/kappa fast at every resolution of the same h / s (a Poiseuille
+//     flow 8% at h = 2s, docs/validation/poiseuille.md). With it the lattice's viscosity at long
+//     waves is nu itself: nu is the viscosity the flow shows. Computed once per run (init).
+//     And, from each no-slip wall (a box or solid with no_slip = true and its wall density on),
+//       a_i += nu / kappa (1 + rho0 / rho_i) Psi(d) (v_wall - v_i)_t,
 //     the same term over the wall's fluid moving as Morris's boundary particles do (the
 //     velocity continued linearly through v_wall at the surface; engine/sph/viscous_wall.hpp
-//     derives Psi, the tangential part _t and the wall's delta). A solid takes the opposite
-//     momentum, m a dt, in its load. A scene without no-slip walls pays nothing for it.
+//     derives Psi, the tangential part _t and the wall's delta). It is the share of the sum
+//     that the lattice sites behind the wall would give, so it takes the same 1 / kappa: a
+//     linear shear stays force-free at the wall layers, and a parabola keeps its shape. A
+//     solid takes the opposite momentum, m a dt, in its load. A scene without no-slip walls
+//     pays nothing for it.
 // Wendland C2 gradients, as the pressure force.
 #include <algorithm>
 #include <fmt/format.h>
@@ -21,6 +33,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
+#include "engine/sph/mass.hpp"
 
 namespace pbf {
 
@@ -49,6 +62,7 @@ class SphViscosity : public Fix {
     if (kinematic_viscosity() > 0)
       for (DensityBoundary* w : sim.density_boundaries())
         if (w->no_slip()) no_slip_walls_.push_back(w);
+    if (!artificial_) kappa_ = lattice_laplacian(sim.particle_mass(), sim.kernels(), sim.rest_density());
   }
 
   void forces(Simulation& sim) override {
@@ -61,7 +75,8 @@ class SphViscosity : public Fix {
     const real* rho = field ? P.data(*field) : sim.summed_density().data();
     const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
-    const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * sound_speed(sim)) * h, nu = real(nu_);
+    const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * sound_speed(sim)) * h;
+    const real nu = real(nu_ / kappa_);  // the sum's coefficient (the top)
     const bool artificial = artificial_;
     const real rho0 = real(sim.rest_density()), dt = real(sim.timestep());
     for_particles(n, [&](std::size_t i) {
@@ -100,12 +115,16 @@ class SphViscosity : public Fix {
  private:
   // c0: the parameter, or the largest signal speed of the pipeline (wcsph's sound speed).
   // The Laplacian form's nu; the artificial form's stability is the Courant condition's, whose
-  // signal speed c0 it scales with (Monaghan 1992).
+  // signal speed c0 it scales with (Monaghan 1992). nu, not the sum's nu / kappa: cfl's step
+  // 0.125 (h/2)^2 / nu lets the lattice's fastest mode (the checkerboard) decay by
+  // dt nu / kappa lambda_max = 0.81 of itself in a step at h = 2s (0.75 undivided), still
+  // below 1: no overshoot, and far from the explicit limit 2.
   double kinematic_viscosity() const override { return artificial_ ? 0 : nu_; }
   double sound_speed(const Simulation& sim) const { return c0_ > 0 ? c0_ : sim.max_signal_speed(); }
 
   bool artificial_;
   double alpha_, nu_, c0_;
+  double kappa_ = 1;  // the Laplacian's lattice factor on this run's rest lattice (the top)
   FieldId accel_ = 0;
   std::vector<DensityBoundary*> no_slip_walls_;  // this run's, for the Laplacian form
 };

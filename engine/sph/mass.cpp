@@ -66,6 +66,17 @@ double lattice_wall_shear(double mass, const Kernels& kernels, double rest_densi
   return mass / rest_density * sum;
 }
 
+double lattice_laplacian(double mass, const Kernels& kernels, double rest_density) {
+  const double spacing = lattice_spacing(mass, kernels, rest_density);
+  const double eta2 = 0.01 * double(kernels.h2);
+  double sum = 0;
+  for_lattice_offsets(spacing, kernels.h, [&](double dx, double dy, double dz) {
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    sum -= double(kernels.grad_factor(real(r2))) * r2 * dz * dz / (r2 + eta2);
+  });
+  return mass / rest_density * sum;
+}
+
 double lattice_gradient_sum(double mass, const Kernels& kernels, double rest_density) {
   const double spacing = lattice_spacing(mass, kernels, rest_density);
   double gi[3] = {0, 0, 0}, sum_j = 0;

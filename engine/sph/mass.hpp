@@ -47,4 +47,11 @@ double lattice_wall_density(double mass, const Kernels& kernels, double rest_den
 // normal separation from the particle (1/m; engine/sph/viscous_wall.hpp).
 double lattice_wall_shear(double mass, const Kernels& kernels, double rest_density);
 
+// The Laplacian viscosity's lattice factor: what Morris's sum, sum_j 2 V (-g(r_j)) r_j^2 /
+// (r_j^2 + 0.01 h^2) (u_j - u_i), gives a quadratic field u = z^2 / 2 (whose Laplacian is 1)
+// at a particle inside an infinite cubic lattice whose spacing gives `mass` the rest density:
+//   kappa = -V sum_j g(r_j) r_j^2 z_j^2 / (r_j^2 + 0.01 h^2),   V = mass / rho0
+// (0.922 at h = 2s, 0.959 at 3s; engine/fixes/sph_viscosity.cpp divides its sum by it).
+double lattice_laplacian(double mass, const Kernels& kernels, double rest_density);
+
 }  // namespace pbf

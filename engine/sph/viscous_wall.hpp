@@ -7,10 +7,12 @@
 // wall point at depth zeta behind the surface moves at
 //   v_j = v_w - (zeta / d) (v_i - v_w),   d: particle i's distance from the surface,
 // so v_i - v_j = (v_i - v_w) s_n / d, with s_n = d + zeta the normal separation. Morris's
-// pair term nu m_j (1/rho_i + 1/rho_j) (x_ij . gradW_ij) / (r^2 + eta^2) v_ij, with
+// pair term nu' m_j (1/rho_i + 1/rho_j) (x_ij . gradW_ij) / (r^2 + eta^2) v_ij, with
 // m_j / rho_j -> dV (the wall's fluid at rest density) and m_j / rho_i -> rho0 / rho_i dV,
 // integrated over the wall's fluid (s_n > d + delta_v), is
-//   a_i += nu (1 + rho0 / rho_i) Psi(d) (v_w - v_i)_t,
+//   a_i += nu' (1 + rho0 / rho_i) Psi(d) (v_w - v_i)_t,
+// nu' the coefficient of the fluid's own sum (sph_viscosity's nu / kappa, the lattice factor
+// divided out): the wall term stands for lattice sites, so it takes the same one.
 //   Psi(d) = 1/d integral_{s_n > z0} (-g(r)) r^2 / (r^2 + eta^2) s_n dV
 //          = pi / d integral_{z0}^{h} (-g(r)) r^3 (r^2 - z0^2) / (r^2 + eta^2) dr,   z0 = d + delta_v,
 // (gradW = g r_vec, eta^2 = 0.01 h^2; on the sphere of radius r, the cap beyond the plane at
@@ -32,7 +34,8 @@
 // first layer (d = s/2) gets exactly what the lattice sites behind the wall would give a
 // linear shear (0.013 s at h = 2s). A particle closer than h/8 (only with a contact
 // distance below 1/4 spacing at h = 2s) is taken at h/8: Psi grows as 1/d, and the cap keeps
-// the wall's rate nu (1 + rho0/rho) Psi within the viscous time-step limit of cfl.
+// the wall's rate nu' (1 + rho0/rho) Psi within the viscous time-step limit of cfl (cfl's step
+// 0.125 (h/2)^2 / nu times the rate is about 0.5 b(1/8 + delta_v/h) / kappa = 0.69 at h = 2s).
 #include "engine/core/real.hpp"
 
 namespace pbf {
