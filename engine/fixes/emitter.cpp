@@ -34,12 +34,9 @@
 // their D_k stay at L until there is room, and the log says so once. Sites inside a solid are
 // left out.
 //
-// An inlet zone (`buffer` > 0, for an opening under water or against a wall, where the fluid
-// ahead would block it): after each step's velocity update the particles over the opening
-// within `buffer` ahead of it (and s/2 behind) move at the U_k of the site whose cell they are
-// over, so that the zone feeds the fluid ahead at the set rate and no fluid flows back over
-// the opening (DualSPHysics's inlet buffer, simplified: the zone's particles are fluid, their
-// velocity imposed).
+// An inlet zone (`buffer` > 0, for an opening under water or at a wall): the zone's particles
+// move kinematically at their sites' U_k, and D_k is where site k's hindmost one stands, so a
+// particle enters L behind it, never waiting (engine/fixes/inlet_zone.hpp).
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -51,6 +48,7 @@
 #include "engine/core/simulation.hpp"
 #include "engine/distributed/comm.hpp"
 #include "engine/fixes/emitter_opening.hpp"
+#include "engine/fixes/inlet_zone.hpp"
 #include "engine/geometry/solid_body.hpp"
 #include "engine/geometry/space_time_function.hpp"
 #include "engine/io/bytes.hpp"
@@ -90,7 +88,7 @@ class Emitter : public Fix {
   }
 
   std::vector<Stage> stages() const override {
-    if (buffer_ > 0) return {Stage::exchange, Stage::velocity_post};
+    if (buffer_ > 0) return {Stage::exchange, Stage::external_forces, Stage::constraints, Stage::velocity_post};
     return {Stage::exchange};
   }
   // After the other fixes' velocity_post (vorticity, XSPH): the zone's velocity is the last word.
@@ -138,21 +136,28 @@ class Emitter : public Fix {
     site_velocity_real_.assign(sites, {real(velocity_[0]), real(velocity_[1]), real(velocity_[2])});
     due_.assign(sites, 0);
     due_sites_.reserve(sites);
+    if (buffer_ > 0)
+      zone_field_ = sim.particles().declare(
+          {"inlet_" + id(), 1, "1 while the particle is in emitter " + id() + "'s inlet zone", true});
   }
 
   void exchange(Simulation& sim) override {
     const double t = sim.time(), dt = sim.timestep(), L = layer_distance_;
     if (!checked_) check_scene(sim);
     checked_ = true;
-    const bool active = t + 0.5 * dt >= start_ && t + 0.5 * dt < stop_;  // the steps whose middle is in [start, stop)
-    if (!active && buffer_ == 0) return;
+    active_ = t + 0.5 * dt >= start_ && t + 0.5 * dt < stop_;  // the steps whose middle is in [start, stop)
+    if (!active_) return;
     if (!inflow_->constant()) evaluate(t + 0.5 * dt);
-    if (!active) return;
     const Vec3& n = opening_.normal();
-    for (std::size_t k = 0; k < opening_.sites(); ++k)
-      if (opening_.open(k)) distance_[k] += dot(site_velocity_[k], n) * dt;
     auto& P = sim.particles();
     const std::size_t before = P.size();
+    if (buffer_ > 0) {  // D_k: where site k's hindmost zone particle stands
+      zone_.find_back(P, opening_, 0.5 * used_spacing_, buffer_, zone_field_, !zone_filled_, L, distance_);
+      zone_filled_ = true;
+    } else {
+      for (std::size_t k = 0; k < opening_.sites(); ++k)
+        if (opening_.open(k)) distance_[k] += dot(site_velocity_[k], n) * dt;
+    }
     for (;;) {
       bool any = false;
       for (std::size_t k = 0; k < opening_.sites(); ++k) {  // (a site whose inflow pauses admits nothing)
@@ -160,7 +165,7 @@ class Emitter : public Fix {
         any = any || due_[k];
       }
       if (!any) break;
-      if (blocked(sim, before)) {
+      if (buffer_ == 0 && blocked(sim, before)) {
         if (!said_blocked_)
           spdlog::warn("emitter '{}': fluid stands in front of the opening at t = {:.6g} s: it waits for room (said "
                        "once)",
@@ -170,27 +175,26 @@ class Emitter : public Fix {
           if (due_[k]) distance_[k] = L;
         break;
       }
+      const std::size_t first = P.size();
       add_due(P);
+      if (buffer_ > 0) std::fill(P.data(zone_field_) + first, P.data(zone_field_) + P.size(), real(1));
       for (std::size_t k = 0; k < opening_.sites(); ++k)
         if (due_[k]) distance_[k] -= L;
     }
     emitted_.count_from(P, before);
   }
 
-  // The inlet zone moves at its sites' velocities.
+  // The inlet zone: who is in it at the step's start (the indices hold from here to the step's
+  // end), and where they are by its end.
+  void external_forces(Simulation& sim) override {
+    if (active_) zone_.take(sim.particles(), opening_, 0.5 * used_spacing_, buffer_, zone_field_);
+    else zone_.clear();  // a closed inlet moves nothing
+  }
+  void constraint(Simulation& sim, int) override {
+    zone_.move(sim.particles(), site_velocity_real_, sim.timestep(), false);
+  }
   void velocity_post(Simulation& sim) override {
-    auto& P = sim.particles();
-    const double s = used_spacing_;
-    real *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
-    const real *x = P.x(), *y = P.y(), *z = P.z();
-    for_particles(P.size(), [&](std::size_t i) {
-      const auto o = opening_.offset({double(x[i]), double(y[i]), double(z[i])});
-      if (o[2] < -0.5 * s || o[2] >= buffer_ || !opening_.over(o[0], o[1], 0)) return;
-      const auto& v = site_velocity_real_[opening_.nearest_site(o[0], o[1])];
-      vx[i] = v[0];
-      vy[i] = v[1];
-      vz[i] = v[2];
-    });
+    zone_.move(sim.particles(), site_velocity_real_, sim.timestep(), true);
   }
 
   void save_state(ByteWriter& w) const override {
@@ -198,6 +202,7 @@ class Emitter : public Fix {
     w.put_array(distance_.data(), distance_.size());
     w.put(static_cast<std::uint8_t>(started_));
     w.put(static_cast<std::uint8_t>(said_blocked_));
+    w.put(static_cast<std::uint8_t>(zone_filled_));
     emitted_.save(w);
   }
   void restore_state(ByteReader& r) override {
@@ -207,6 +212,7 @@ class Emitter : public Fix {
         throw Error(fmt::format("{}: fix '{}' (emitter): a site's distance is {}", r.what(), id(), D));
     started_ = r.get<std::uint8_t>() != 0;
     said_blocked_ = r.get<std::uint8_t>() != 0;
+    zone_filled_ = r.get<std::uint8_t>() != 0;
     emitted_.restore(r);
   }
 
@@ -335,9 +341,12 @@ class Emitter : public Fix {
   std::vector<std::array<real, 3>> site_velocity_real_;  // the same, as the particles hold it
   std::vector<char> due_;                              // the sites whose particle enters in this round
   std::vector<std::size_t> due_sites_;                 // the same, listed
+  InletZone zone_;
+  FieldId zone_field_ = 0;         // "inlet_<id>": 1 for the zone's particles
   // State: the distance advanced at each site since its last particle, and what has entered.
   std::vector<double> distance_;
-  bool started_ = false, said_blocked_ = false, checked_ = false;
+  bool started_ = false, said_blocked_ = false, checked_ = false, active_ = false;
+  bool zone_filled_ = false;  // the fluid in the zone at the inlet's first step joined it
   ParticleFlow emitted_;
 };
 
@@ -372,8 +381,9 @@ void register_emitter(StyleRegistry& r) {
                     true}
               .magnitude_at_most(1e6),
           ParamSpec{"buffer", ParamType::Real, 0.0, "m",
-                    "an inlet zone this deep ahead of the opening, whose particles move at the set velocity (that of "
-                    "the site they are over; for an opening under water or at a wall; 0: none)"}
+                    "an inlet zone this deep ahead of the opening: its particles move kinematically at the set "
+                    "velocity (that of the site they are over) and new ones enter behind them without waiting (for an "
+                    "opening under water or at a wall; 0: none)"}
               .within(0, 1e6),
           ParamSpec{"start", ParamType::Real, 0.0, "s", "when the fluid starts to enter"}.magnitude_at_most(1e12),
           ParamSpec{"stop", ParamType::Real, 1e12, "s", "when it stops"}.magnitude_at_most(1e12),

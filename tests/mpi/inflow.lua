@@ -8,7 +8,7 @@
 -- -v solver=wcsph for WCSPH; -v periodic=y makes the tank periodic across its width (the pool
 -- fills the period; the jet's sheet spreads through the faces); -v profile=1 gives the jet's
 -- velocity as a function of time and place (a profile across the opening that grows in time),
--- which every rank calls alike; -v read=FILE continues from a restart, -v save=FILE writes one
+-- which every rank calls alike; -v buffer=1 gives the jet an inlet zone 4 cm deep; -v read=FILE continues from a restart, -v save=FILE writes one
 -- at the end; -v steps=N runs until step N (default 200).
 local s = 0.02
 local wcsph = var.solver == "wcsph"
@@ -37,6 +37,7 @@ if var.profile then
     return {-(0.5 + 2 * t) * (1 - across * across), 0.2 * across, 0}
   end
 end
+if var.buffer then jet.buffer = 0.04 end
 pbf.fix("jet", "emitter", jet)
 pbf.fix("drain", "outflow", {region = "box", lo = {0.3, 0, 0}, hi = {0.4, 0.2, 0.03}})
 pbf.compute("n", "count")

@@ -11,8 +11,8 @@ Cases:
               and in one periodic across its width: frames, thermo and probes identical at 1 to
               4 ranks (and, periodic, at 2 threads), initial + in - out = present, and a restart
               written on 3 ranks continued on 2 (periodic: and on 1 process at 2 threads) as the
-              run that never stopped; and PBF with the jet's velocity a Lua function of time and
-              place (at 1 to 3 ranks).
+              run that never stopped; and, at 1 to 3 ranks, PBF with the jet's velocity a Lua
+              function of time and place, WCSPH with an inlet zone.
   identical_wcsph  scenarios/dambreak.lua with WCSPH (leapfrog, wcsph, sph_viscosity, cfl)
               likewise: frames, dump/image's pictures and the thermo CSV (the front, the
               gauge at the back wall).
@@ -190,21 +190,22 @@ def identical_flow(args, work):
     """An emitter and a sink, in a closed tank and in one periodic across its width: the same
     frames, thermo and probes at 1 to 4 ranks, both solvers, and (periodic) at 2 threads; a
     restart written on 3 ranks continued on 2 (and, periodic, on 1 process at 2 threads) as the
-    run that never stopped; the same for PBF with the jet's velocity a Lua function (every rank
-    calls it alike), at 1 to 3 ranks."""
+    run that never stopped; the same at 1 to 3 ranks for PBF with the jet's velocity a Lua
+    function (every rank calls it alike) and for WCSPH with an inlet zone (its particles marked
+    in a field that travels with them)."""
     script = os.path.join(HERE, "inflow.lua")
-    for solver, periodic, profile in (("pbf", None, False), ("wcsph", None, False), ("pbf", "y", False),
-                                      ("wcsph", "y", False), ("pbf", None, True)):
+    for solver, periodic, extra in (("pbf", None, None), ("wcsph", None, None), ("pbf", "y", None),
+                                    ("wcsph", "y", None), ("pbf", None, "profile"), ("wcsph", None, "buffer")):
         steps = 200 if solver == "pbf" else 800
-        name = solver + (f" periodic {periodic}" if periodic else "") + (" (a velocity function)" if profile else "")
-        base = os.path.join(work, solver + (f"_periodic_{periodic}" if periodic else "") + ("_profile" if profile else ""))
+        name = solver + (f" periodic {periodic}" if periodic else "") + (f" ({extra})" if extra else "")
+        base = os.path.join(work, solver + (f"_periodic_{periodic}" if periodic else "") + (f"_{extra}" if extra else ""))
         os.makedirs(base)
         variables = {"solver": solver, "steps": steps}
         if periodic:
             variables["periodic"] = periodic
-        if profile:
-            variables["profile"] = 1
-        rank_counts = (1, 2, 3) if profile else (1, 2, 3, 4)
+        if extra:
+            variables[extra] = 1
+        rank_counts = (1, 2, 3) if extra else (1, 2, 3, 4)
         out, frames = same_outputs(args, base, script, variables, ["thermo.csv", "probes.csv"], rank_counts=rank_counts)
         with open(os.path.join(out, "thermo.csv")) as f:
             rows = [line.strip().split(",") for line in f][2:]
