@@ -54,7 +54,7 @@ end
 pbf.fix("inlet", "emitter", {center = {s / 2, W / 2, inflow_depth / 2}, normal = {1, 0, 0}, axis = {0, 1, 0},
                              size = {W, inflow_depth}, speed = speed, spacing = s, buffer = 4 * s})
 
-require("outputs").add(out, {color = "speed", min = 0, max = 1.5, direction = {0.4, 1.5, -0.7}, zoom = 1.4})
+require("outputs").add(out, {color = "speed", min = 0, max = 1.5, direction = {0.25, 1.5, -0.6}, zoom = 1.2})
 require("outputs").frames(out, 0.5)
 
 pbf.compute("n", "count")
