@@ -158,6 +158,34 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
                {"velocity", inflow}, {"buffer", 0.02}}}},
             {{"in", "flow", {{"fix", std::string("jet")}}}}};
   }
+  if (name == "PbfFloatingBody")  // a box the block runs into, spinning and rising as it is released
+    return {0.002,
+            {kGravity,
+             {"pbf", "pbf", {}},
+             kWalls,
+             {"crate",
+              "solid",
+              {{"shape", std::string("box")},
+               {"lo", Vec3{0.12, 0.03, 0.01}},
+               {"hi", Vec3{0.16, 0.07, 0.07}},
+               {"density", 600.0},
+               {"velocity", Vec3{0, 0, 0.05}},
+               {"angular_velocity", Vec3{0.5, 1, 0}},
+               {"hold", 0.003}}}},
+            {{"state", "body", {{"solid", std::string("crate")}}}}};
+  if (name == "WcsphHingedFlap") {  // a flap hinged at the floor, which the block pushes over
+    auto fixes = wcsph("summation");
+    fixes.push_back(kWalls);
+    fixes.push_back({"flap",
+                     "solid",
+                     {{"shape", std::string("box")},
+                      {"lo", Vec3{0.13, 0, 0.01}},
+                      {"hi", Vec3{0.14, 0.1, 0.09}},
+                      {"density", 800.0},
+                      {"free_rotation", Vec3{0, 1, 0}},
+                      {"hinge", Vec3{0.135, 0.05, 0.01}}}});
+    return {0.0002, fixes, {{"state", "body", {{"solid", std::string("flap")}}}}};
+  }
   ADD_FAILURE() << "no pipeline " << name;
   return {};
 }
@@ -166,7 +194,7 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
 inline const std::vector<const char*> kPipelines = {
     "PbfVorticityXsph", "WcsphSummationLeapfrogArtificialViscosity", "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid",
     "SampleProbesGauge", "WcsphLaplacianViscosityXsph", "PbfOutflow", "WcsphOutflow", "PbfEmitter", "WcsphEmitter",
-    "PbfEmitterFunction"};
+    "PbfEmitterFunction", "PbfFloatingBody", "WcsphHingedFlap"};
 
 // A block of 10 x 10 x 8 particles (spacing 1 cm, h = 2 cm) moving at 0.5 m/s along x, in
 // a box twice as long.

@@ -14,6 +14,10 @@ struct Quaternion {
     (axis == 0 ? q.x : axis == 1 ? q.y : q.z) = std::sin(0.5 * angle);
     return q;
   }
+  static Quaternion about(const std::array<double, 3>& unit_axis, double angle) {  // any unit axis
+    const double s = std::sin(0.5 * angle);
+    return {std::cos(0.5 * angle), s * unit_axis[0], s * unit_axis[1], s * unit_axis[2]};
+  }
   Quaternion operator*(const Quaternion& b) const {
     return {w * b.w - x * b.x - y * b.y - z * b.z, w * b.x + x * b.w + y * b.z - z * b.y,
             w * b.y - x * b.z + y * b.w + z * b.x, w * b.z + x * b.y - y * b.x + z * b.w};

@@ -14,6 +14,14 @@
 //   R1(dt/2) R2(dt/2) R3(dt) R2(dt/2) R1(dt/2)
 // compose a symmetric, symplectic step: L is kept to round-off, and the energy's error stays
 // bounded (of order dt^2) over any number of turns instead of drifting.
+//
+// A body may be held (`Freedom`): translations along world axes locked (their force and
+// velocity components dropped), and its rotation free, none, or about one world axis e only.
+// About one axis it turns at the rate w, with
+//   I_e dw/dt = (tau + (x - p) x F) . e,   I_e = e . I_c e + m |(x - p) x e|^2
+// (tau and I_c about the centre x) about a pivot p (a hinge: every translation locked, the
+// centre carried round p), or about the centre itself (p = x: a body that heaves and rolls in
+// 2D). I_e is constant: a body turning about e keeps e fixed in its own frame.
 #include <array>
 
 #include "engine/bodies/mass_properties.hpp"
@@ -25,6 +33,14 @@ class RigidBody {
  public:
   using Vec = std::array<double, 3>;
 
+  struct Freedom {
+    std::array<bool, 3> move{true, true, true};  // translation along x, y, z
+    enum class Turn { free, none, about_axis } turn = Turn::free;
+    int axis = 0;                  // about_axis: the world axis 0, 1, 2
+    bool hinged = false;           // about_axis: turn about `pivot` (every translation locked)
+    Vec pivot{0, 0, 0};
+  };
+
   RigidBody() = default;
   // A body of these mass properties, at rest where they place it.
   explicit RigidBody(const MassProperties& p);
@@ -34,12 +50,21 @@ class RigidBody {
   const Vec& position() const { return position_; }
   const Vec& velocity() const { return velocity_; }
   const Quaternion& orientation() const { return orientation_; }  // principal frame to world
-  const Vec& angular_momentum() const { return angular_momentum_; }
+  Vec angular_momentum() const;  // world frame, about the centre
   Vec angular_velocity() const;  // world frame
   double kinetic_energy() const;
 
-  void set_velocity(const Vec& v) { velocity_ = v; }
+  const Freedom& freedom() const { return freedom_; }
+  // Holds the body so; its velocities lose what the freedom forbids. (Checked by the caller:
+  // a hinge locks every translation.)
+  void restrict(const Freedom& freedom);
+
+  void set_velocity(const Vec& v);
   void set_angular_velocity(const Vec& omega);  // world frame
+  // The state as it is (a restart's), set back exactly.
+  void set_state(const Vec& position, const Vec& velocity, const Quaternion& orientation, const Vec& angular_momentum,
+                 double spin);
+  double spin() const { return spin_; }  // about_axis: the rate about the axis
 
   void kick(const Vec& force, const Vec& torque, double dt);
   void drift(double dt);
@@ -50,6 +75,8 @@ class RigidBody {
   Vec position_{0, 0, 0}, velocity_{0, 0, 0};
   Quaternion orientation_;
   Vec angular_momentum_{0, 0, 0};
+  Freedom freedom_;
+  double spin_ = 0, axis_moment_ = 0;  // about_axis: the rate w and the moment I_e
 };
 
 }  // namespace pbf

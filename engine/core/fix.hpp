@@ -61,6 +61,9 @@ class Fix {
   // Whether this fix adds to the "acceleration" field, which needs an integrator of
   // accelerations (leapfrog) in the pipeline.
   virtual bool adds_accelerations() const { return false; }
+  // The acceleration this fix gives every free body (a `solid` with a mass) as well as the
+  // fluid: gravity's g. The bodies add up every fix's.
+  virtual std::array<double, 3> body_acceleration() const { return {0, 0, 0}; }
   // A job only one fix of a pipeline may do ("time integration", "walls at the domain
   // faces", ...): a second fix with the same job is refused when it is added. nullptr: none.
   virtual const char* exclusive_job() const { return nullptr; }

@@ -21,6 +21,7 @@ class Gravity : public Fix {
     into_accelerations_ = integrator && integrator->integration() == Integration::accelerations;
   }
   bool runs_distributed() const override { return true; }  // each particle on its own
+  std::array<double, 3> body_acceleration() const override { return g_; }
   std::vector<Stage> stages() const override {
     return {into_accelerations_ ? Stage::forces : Stage::external_forces};
   }

@@ -64,7 +64,7 @@ void SolidFix::add_density(const Simulation& sim, real x, real y, real z, std::s
 // distance less what it has moved since, and two cells for the spline's sharpening) sees no
 // wall: the map would answer "far in the fluid".
 bool SolidFix::out_of_reach(const Simulation& sim, std::size_t particle, const real q[3]) const {
-  if (particle == kNoParticle || motion_ || started_step_ != sim.step() || particle >= start_distance_.size())
+  if (particle == kNoParticle || moves() || started_step_ != sim.step() || particle >= start_distance_.size())
     return false;
   const real moved = std::sqrt((q[0] - start_[0][particle]) * (q[0] - start_[0][particle]) +
                                (q[1] - start_[1][particle]) * (q[1] - start_[1][particle]) +
@@ -93,7 +93,7 @@ void SolidFix::add_no_slip(const Simulation& sim, const real q[3], std::size_t p
 // The wall's velocity at q over the step: where that point of the wall was at the step's
 // start, to where it is at its end (now_, once external_forces has moved it).
 bool SolidFix::wall_velocity(const Simulation& sim, const real q[3], real v[3]) const {
-  if (!motion_) return false;
+  if (!moves()) return false;
   const Point was = before_.apply(now_.apply_inverse({double(q[0]), double(q[1]), double(q[2])}));
   const double inv_dt = 1 / sim.timestep();
   for (int a = 0; a < 3; ++a) v[a] = real((q[a] - was[a]) * inv_dt);
@@ -104,7 +104,12 @@ bool SolidFix::wall_velocity(const Simulation& sim, const real q[3], real v[3]) 
 // there; the wall moves to where it is at the step's end.
 void SolidFix::external_forces(Simulation& sim) {
   before_ = now_;
-  move_to(sim.time() + sim.timestep(), true);
+  if (dynamics_) {
+    dynamics_->start_step(sim.time(), sim.timestep());
+    place(dynamics_->transform());
+  } else {
+    move_to(sim.time() + sim.timestep(), true);
+  }
   const auto& P = sim.particles();
   const std::size_t n = P.size();
   for (auto& s : start_) s.resize(n);
@@ -165,7 +170,7 @@ void SolidFix::constraint(Simulation& sim, int) {
   if (lost < n)
     throw Error(fmt::format("particle {} at ({}, {}, {}) went through solid '{}' at step {}{}", P.ids()[lost], x[lost],
                             y[lost], z[lost], id(), sim.step() + 1,
-                            motion_ ? " (a moving wall needs a step that keeps its motion below the spacing: cfl)"
+                            moves() ? " (a moving wall needs a step that keeps its motion below the spacing: cfl)"
                                     : ""));
 }
 
@@ -180,7 +185,7 @@ void SolidFix::velocity_update(Simulation& sim) {
   for_particles(P.size(), [&](std::size_t i) {
     real d, g[3];
     const real q[3] = {x[i], y[i], z[i]};
-    if (!motion_) {  // at rest, the step's start distance rules out most particles (keep_out)
+    if (!moves()) {  // at rest, the step's start distance rules out most particles (keep_out)
       const real moved = std::sqrt((q[0] - start_[0][i]) * (q[0] - start_[0][i]) +
                                    (q[1] - start_[1][i]) * (q[1] - start_[1][i]) +
                                    (q[2] - start_[2][i]) * (q[2] - start_[2][i]));
@@ -229,11 +234,15 @@ void SolidFix::end_of_step(Simulation& sim) {
       },
       ranks);
   for (int k = 0; k < 6; ++k) load_[k] = -inv_dt * sums[static_cast<std::size_t>(k)];
+  if (dynamics_) {
+    dynamics_->end_step(load_, sim.timestep());
+    check_body_speed(sim);
+  }
 }
 
 // A world point in the frame the map was built in (the same point for a solid at rest), and back.
 void SolidFix::to_frame(const RigidTransform& T, const real q[3], real b[3]) const {
-  if (!motion_) {
+  if (!moves()) {
     std::copy(q, q + 3, b);
     return;
   }
@@ -253,7 +262,7 @@ SolidMap::Where SolidFix::map_at(MapQuery query, const RigidTransform& T, const 
   real b[3];
   to_frame(T, q, b);
   const auto where = (map_.*query)(b[0], b[1], b[2], value, g);
-  if (motion_) rotate_to_world(T, g);
+  if (moves()) rotate_to_world(T, g);
   return where;
 }
 

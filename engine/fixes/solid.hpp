@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/core/simulation.hpp"
+#include "engine/fixes/solid_dynamics.hpp"
 #include "engine/fixes/solid_shape.hpp"
 #include "engine/geometry/motion.hpp"
 #include "engine/geometry/solid_map.hpp"
@@ -36,6 +37,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   std::uint64_t surface_version() const override { return surface_version_; }
   bool fluid_inside() const override { return fluid_inside_; }
   std::array<double, 6> load() const override { return load_; }
+  const SolidDynamics* dynamics() const override { return dynamics_ ? &*dynamics_ : nullptr; }
   std::optional<double> depth_in_wall(const std::array<double, 3>& point) const override;
   void record_push(std::size_t i, const real momentum[3]) override {
     for (int c = 0; c < 3; ++c) push_[c][i] += momentum[c];
@@ -76,8 +78,12 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
 
   // Whether the particle (memory index), within a step, is still beyond the kernel's reach.
   bool out_of_reach(const Simulation& sim, std::size_t particle, const real q[3]) const;
+  // Whether it moves: by its motion, or as a body the fluid moves.
+  bool moves() const { return motion_ || dynamics_; }
   RigidTransform pose_at(double t) const { return motion_ ? transform_of(motion_->at(t), pivot_) : RigidTransform{}; }
   void move_to(double t, bool within_step = false);
+  void place(const RigidTransform& T);
+  void check_body_speed(const Simulation& sim) const;
   void check_thickness(double spacing) const;
 
   // A world point in the frame the map was built in (the same point for a solid at rest), and
@@ -99,7 +105,8 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   double friction_;
   bool no_slip_, wall_density_;
   bool viscous_no_slip_ = false;  // this run's: a Laplacian viscosity holds the no-slip wall
-  MotionPtr motion_;  // nullptr: at rest
+  MotionPtr motion_;  // nullptr: at rest, or a body
+  std::optional<SolidDynamics> dynamics_;  // a body the fluid moves
   Point pivot_{};
   Pose pose_;                           // where the motion has it now
   std::optional<Pose> saved_pose_;      // the restart's, until init compares

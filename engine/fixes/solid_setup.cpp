@@ -31,6 +31,16 @@ SolidFix::SolidFix(const std::string& id, const Params& p)
     const Vec3 pivot = p.vec3("pivot");
     pivot_ = {pivot[0], pivot[1], pivot[2]};
   }
+  if (SolidDynamics::wanted(p)) {
+    if (shape_.is_plane()) throw Error("a plane cannot move (its map covers the domain only): use a box");
+    dynamics_.emplace(id, p, shape_, fluid_inside_);
+  } else {
+    for (const auto& spec : SolidDynamics::params())
+      if (p.has(spec.name))
+        throw Error(fmt::format("parameter '{}' belongs to a body the fluid moves: give the solid a 'density' or a "
+                                "'mass'",
+                                spec.name));
+  }
   if (motion_ && shape_.is_plane())
     throw Error("a plane cannot move (its map covers the domain only): use a box");
   if (!motion_ && p.has("pivot")) throw Error("'pivot' needs a 'motion'");
@@ -44,11 +54,11 @@ SolidFix::SolidFix(const std::string& id, const Params& p)
 // points of a box by an affine map, so the largest displacement is at a corner of the box
 // around the placed surface.
 double SolidFix::max_speed(double t, double dt) const {
-  if (!motion_ || !(dt > 0)) return 0;
+  if (!moves() || !(dt > 0)) return 0;
   RigidTransform a, b;
   try {
-    a = pose_at(t);
-    b = pose_at(t + dt);
+    a = dynamics_ ? dynamics_->transform() : pose_at(t);
+    b = dynamics_ ? dynamics_->after_step(t, dt) : pose_at(t + dt);
   } catch (const Error& e) {  // asked by time-step control: say whose motion it is
     throw Error(fmt::format("solid '{}': {}", id(), e.what()), e.located());
   }
@@ -71,6 +81,8 @@ void SolidFix::save_state(ByteWriter& w) const {
   w.put<std::uint64_t>(shape_.file_hash());
   for (double v : pose_.translate) w.put(v);
   for (double v : pose_.rotate_deg) w.put(v);
+  w.put<std::uint8_t>(dynamics_.has_value());
+  if (dynamics_) dynamics_->save(w);
 }
 
 void SolidFix::restore_state(ByteReader& r) {
@@ -80,6 +92,11 @@ void SolidFix::restore_state(ByteReader& r) {
   for (double& v : saved.translate) v = r.get<double>();
   for (double& v : saved.rotate_deg) v = r.get<double>();
   saved_pose_ = saved;
+  const bool body = r.get<std::uint8_t>() != 0;
+  if (body != dynamics_.has_value())
+    throw Error(fmt::format("solid '{}' is {} in the restart, and {} now: the run cannot continue from it", id(),
+                            body ? "a body the fluid moves" : "no body", body ? "no body" : "a body"));
+  if (dynamics_) dynamics_->restore(r);
   if (!file.empty() && file == shape_.file() && hash != shape_.file_hash())
     throw Error(fmt::format("solid '{}': mesh file '{}' has changed since the restart was written (its contents "
                             "differ): the continued run would not see the saved run's wall",
@@ -139,6 +156,12 @@ void SolidFix::prepare_scene(Simulation& sim) {
 }
 
 void SolidFix::init(Simulation& sim) {
+  if (dynamics_) {  // every fix's acceleration of bodies (gravity)
+    RigidBody::Vec g{0, 0, 0};
+    for (const auto& fix : sim.fixes())
+      for (int a = 0; a < 3; ++a) g[a] += fix->body_acceleration()[a];
+    dynamics_->set_gravity(g);
+  }
   move_to(sim.time());
   prepare(sim);
   viscous_no_slip_ = no_slip_ && wall_density_ && sim.max_kinematic_viscosity() > 0;
@@ -164,10 +187,10 @@ void SolidFix::prepare(const Simulation& sim) {
   const double cell = cell_size();
   const double reach = SolidMap::required_reach(h, cell, wall_.delta());
   const std::unique_ptr<Shape> shape = shape_.make_shape(dom, cell, reach);
-  if (!motion_) surface_ = shape_.surface();  // a plane's is known now
+  if (!moves()) surface_ = shape_.surface();  // a plane's is known now
   // A moving solid is queried in the frame it was placed in, over all of its surface.
   SolidMap::Region region{{dom.lo[0], dom.lo[1], dom.lo[2]}, {dom.hi[0], dom.hi[1], dom.hi[2]}, cell};
-  if (motion_) {
+  if (moves()) {
     const auto box = bounds(shape_.surface());
     for (int a = 0; a < 3; ++a) {
       region.lo[a] = std::min(region.lo[a], box[0][a]);
@@ -180,8 +203,10 @@ void SolidFix::prepare(const Simulation& sim) {
   if (!fluid_inside_ && !shape_.is_plane()) check_thickness(spacing_);
 }
 
-// Puts the solid where its motion has it at time t (the surface the outputs draw with it).
+// Puts the solid where its motion has it at time t, a body where its state has it (the surface
+// the outputs draw with it).
 void SolidFix::move_to(double t, bool within_step) {
+  if (dynamics_) place(dynamics_->transform());
   if (!motion_) return;
   try {
     pose_ = motion_->at(t);
@@ -189,7 +214,10 @@ void SolidFix::move_to(double t, bool within_step) {
     if (!e.located() && within_step) throw;  // the run loop names the step and the fix
     throw Error(fmt::format("solid '{}': {}", id(), e.what()), e.located());
   }
-  const RigidTransform next = transform_of(pose_, pivot_);
+  place(transform_of(pose_, pivot_));
+}
+
+void SolidFix::place(const RigidTransform& next) {
   if (next == now_ && surface_version_ > 0) return;
   now_ = next;
   const TriangleMesh& placed = shape_.surface();
@@ -200,7 +228,7 @@ void SolidFix::move_to(double t, bool within_step) {
 // The map's distance into the fluid, negated; deep in the wall and far in the fluid the map
 // keeps only the side.
 std::optional<double> SolidFix::depth_in_wall(const std::array<double, 3>& point) const {
-  if (!built_ || motion_) return std::nullopt;
+  if (!built_ || moves()) return std::nullopt;
   real d = 0;
   switch (map_.distance(real(point[0]), real(point[1]), real(point[2]), d, nullptr)) {
     case SolidMap::Where::wall: return INFINITY;
@@ -219,12 +247,26 @@ void SolidFix::check_thickness(double spacing) const {
                             id(), 2 * depth + cell_size(), spacing));
 }
 
+// A body whose fastest point moves more than h in a step has blown up (the fluid it pushes
+// would be thrown across its neighbourhood): stop with the body's state.
+void SolidFix::check_body_speed(const Simulation& sim) const {
+  const RigidBody& b = dynamics_->body();
+  const auto box = bounds(shape_.surface());
+  const RigidBody::Vec v = b.velocity(), w = b.angular_velocity();
+  double reach = 0;  // the farthest corner of the placed box from the centre, as placed
+  const auto& c = dynamics_->placed_center();
+  for (int k = 0; k < 8; ++k)
+    reach = std::max(reach, std::hypot(box[k & 1][0] - c[0], box[(k >> 1) & 1][1] - c[1], box[(k >> 2) & 1][2] - c[2]));
+  const double fastest = std::hypot(v[0], v[1], v[2]) + std::hypot(w[0], w[1], w[2]) * reach;
+  if (fastest * sim.timestep() > sim.kernel_radius())
+    throw Error(fmt::format("body '{}' blew up: a point of it moves {:.3g} m/s, more than h = {:.3g} m in one step "
+                            "(velocity {:.4g} {:.4g} {:.4g} m/s, angular velocity {:.4g} {:.4g} {:.4g} rad/s)",
+                            id(), fastest, sim.kernel_radius(), v[0], v[1], v[2], w[0], w[1], w[2]));
+}
+
 void register_solid(StyleRegistry& r) {
   const Vec3 zero{0, 0, 0};
-  r.add({"solid",
-         StyleKind::fix,
-         "a wall of any shape (mesh file or primitive), container or obstacle: density, projection, friction",
-         {ParamSpec{"shape", ParamType::String, std::string("mesh"), "", "what the solid is"}.one_of(
+  std::vector<ParamSpec> params = {ParamSpec{"shape", ParamType::String, std::string("mesh"), "", "what the solid is"}.one_of(
               {"mesh", "box", "sphere", "cylinder", "plane"}),
           ParamSpec{"file", ParamType::String, std::nullopt, "", "mesh file (OBJ, STL, ...) for shape 'mesh'", true},
           ParamSpec{"orient", ParamType::Bool, std::nullopt, "",
@@ -263,8 +305,13 @@ void register_solid(StyleRegistry& r) {
                     true},
           ParamSpec{"pivot", ParamType::Vector3, std::nullopt, "m",
                     "the point the motion's rotation turns about (default: the origin)", true}
-              .magnitude_at_most(1e6)},
-         [](const std::string& id, const Params& p) { return std::make_unique<SolidFix>(id, p); }, nullptr});
+              .magnitude_at_most(1e6)};
+  for (auto& spec : SolidDynamics::params()) params.push_back(std::move(spec));
+  r.add({"solid", StyleKind::fix,
+         "a wall of any shape (mesh file or primitive), container or obstacle: density, projection, friction; a body "
+         "the fluid moves, with a density or a mass",
+         std::move(params), [](const std::string& id, const Params& p) { return std::make_unique<SolidFix>(id, p); },
+         nullptr});
 }
 
 }  // namespace pbf

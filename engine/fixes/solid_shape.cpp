@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "engine/core/error.hpp"
+#include "engine/bodies/mass_properties.hpp"
 #include "engine/geometry/mesh_file.hpp"
 #include "engine/geometry/mesh_sdf.hpp"
 #include "engine/geometry/mesh_surface.hpp"
@@ -96,6 +97,58 @@ SolidShape::SolidShape(const std::string& id, const Params& p) : id_(id), shape_
     return;
   }
   place(surface_, placement_);
+}
+
+// A sphere's and a cylinder's second moment about the centre, C = integral of (x - c)(x - c)^T
+// (per unit density), unplaced: the sphere's V r^2 / 5 on the diagonal, the cylinder's
+// V (r^2 / 4 (1 - a a^T) + L^2 / 12 a a^T) along its axis a. The placement x -> A x + t (A its
+// rotation times its scale) maps them as V' = |det A| V, c' = A c + t, C' = |det A| A C A^T,
+// and the inertia is I = rho (trace(C') 1 - C').
+MassProperties SolidShape::mass_properties(double density) const {
+  const std::string what = fmt::format("solid '{}'", id_);
+  if (is_plane()) throw Error(fmt::format("{}: a plane has no volume: it cannot be a body", what));
+  if (mesh_ || shape_name_ == "box") return pbf::mass_properties(surface_, density, what);
+  if (!(density > 0 && std::isfinite(density)))
+    throw Error(fmt::format("{}: the density must be positive and finite, not {}", what, density));
+  double volume, C[3][3] = {};
+  Point center = lo_;
+  if (shape_name_ == "sphere") {
+    volume = 4 * M_PI / 3 * radius_ * radius_ * radius_;
+    for (int i = 0; i < 3; ++i) C[i][i] = volume * radius_ * radius_ / 5;
+  } else {
+    const Point axis{hi_[0] - lo_[0], hi_[1] - lo_[1], hi_[2] - lo_[2]};
+    const double L = norm(axis);
+    volume = M_PI * radius_ * radius_ * L;
+    for (int i = 0; i < 3; ++i) {
+      center[i] = 0.5 * (lo_[i] + hi_[i]);
+      for (int j = 0; j < 3; ++j) {
+        const double aa = axis[i] * axis[j] / (L * L);
+        C[i][j] = volume * (radius_ * radius_ / 4 * ((i == j) - aa) + L * L / 12 * aa);
+      }
+    }
+  }
+  const auto R = rotation_matrix(placement_.rotate_deg);
+  double A[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) A[i][j] = R[3 * i + j] * placement_.scale[j];
+  const double det = std::abs(A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                              A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                              A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]));
+  MassProperties p;
+  p.volume = det * volume;
+  p.mass = density * p.volume;
+  double placed[3][3] = {}, trace = 0;
+  for (int i = 0; i < 3; ++i) {
+    p.center[i] = placement_.translate[i];
+    for (int j = 0; j < 3; ++j) p.center[i] += A[i][j] * center[j];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) placed[i][j] += det * A[i][k] * C[k][l] * A[j][l];
+  }
+  for (int i = 0; i < 3; ++i) trace += placed[i][i];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) p.inertia[i][j] = density * ((i == j) * trace - placed[i][j]);
+  return p;
 }
 
 std::unique_ptr<Shape> SolidShape::make_shape(const Domain& dom, double cell, double reach) {

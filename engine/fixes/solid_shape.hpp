@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "engine/bodies/mass_properties.hpp"
 #include "engine/core/domain.hpp"
 #include "engine/geometry/shape.hpp"
 #include "engine/geometry/triangle_mesh.hpp"
@@ -24,6 +25,11 @@ class SolidShape {
   std::uint64_t file_hash() const { return file_hash_; }       // FNV-1a of the file's bytes
   // The placed surface (a plane's: where it cuts the domain, known after make_shape).
   const TriangleMesh& surface() const { return surface_; }
+
+  // The placed solid's mass, centre and inertia at this density, exactly: a mesh's (and a
+  // box's) polyhedral integrals, a sphere's and a cylinder's closed forms carried through the
+  // placement. Refuses a plane and a mesh that is not closed.
+  MassProperties mass_properties(double density) const;
 
   // The signed distance of the placed solid, exact for primitives, from a grid of `cell`
   // reaching `reach` for a mesh. Refuses a solid that lies outside the domain.

@@ -10,6 +10,8 @@
 
 namespace pbf {
 
+class SolidDynamics;
+
 class SolidBody {
  public:
   virtual ~SolidBody() = default;
@@ -28,6 +30,8 @@ class SolidBody {
   // What the fluid exerted on the solid, averaged over the last step: the force (N) and the
   // torque about the origin (N m), {fx, fy, fz, tx, ty, tz}.
   virtual std::array<double, 6> load() const { return {}; }
+  // A body the fluid moves: its state now (nullptr for a solid at rest or moved by a script).
+  virtual const SolidDynamics* dynamics() const { return nullptr; }
   // How deep a point lies behind the surface, inside the wall (m; negative on the fluid side,
   // infinite deep in the wall), where the solid stands now; nothing where that holds for no
   // whole run: before the run that builds the solid's map, or for a solid that moves.

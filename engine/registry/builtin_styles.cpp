@@ -34,6 +34,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_compute_extent(r);
   register_compute_front(r);
   register_compute_load(r);
+  register_compute_body(r);
   register_compute_probe(r);
   register_compute_gauge(r);
 }

@@ -48,6 +48,7 @@ void register_compute_flow(StyleRegistry&);
 void register_compute_extent(StyleRegistry&);
 void register_compute_front(StyleRegistry&);
 void register_compute_load(StyleRegistry&);
+void register_compute_body(StyleRegistry&);
 void register_compute_probe(StyleRegistry&);
 void register_compute_gauge(StyleRegistry&);
 
