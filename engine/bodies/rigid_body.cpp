@@ -131,6 +131,44 @@ void RigidBody::kick(const Vec& force, const Vec& torque, double dt) {
     if (freedom_.move[a]) velocity_[a] += force[a] / mass_ * dt;
 }
 
+void RigidBody::apply_impulse(const Vec& J, const Vec& p) {
+  const Vec r{p[0] - position_[0], p[1] - position_[1], p[2] - position_[2]}, moment = cross(r, J);
+  switch (freedom_.turn) {
+    case Freedom::Turn::free:
+      for (int a = 0; a < 3; ++a) angular_momentum_[a] += moment[a];
+      break;
+    case Freedom::Turn::about_axis: {
+      const auto k = static_cast<std::size_t>(freedom_.axis);
+      double m = moment[k];
+      if (freedom_.hinged) {  // about the pivot: the centre's share too
+        const Vec c{position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1], position_[2] - freedom_.pivot[2]};
+        m += cross(c, J)[k];
+      }
+      spin_ += m / axis_moment_;
+      break;
+    }
+    case Freedom::Turn::none: break;
+  }
+  if (freedom_.hinged) {
+    set_velocity(velocity_);
+    return;
+  }
+  for (int a = 0; a < 3; ++a)
+    if (freedom_.move[a]) velocity_[a] += J[a] / mass_;
+}
+
+RigidBody::Vec RigidBody::velocity_at(const Vec& p) const {
+  const Vec w = angular_velocity(), r{p[0] - position_[0], p[1] - position_[1], p[2] - position_[2]}, spin = cross(w, r);
+  return {velocity_[0] + spin[0], velocity_[1] + spin[1], velocity_[2] + spin[2]};
+}
+
+double RigidBody::response(const Vec& p, const Vec& n) const {
+  RigidBody pushed = *this;
+  pushed.apply_impulse(n, p);
+  const Vec before = velocity_at(p), after = pushed.velocity_at(p);
+  return (after[0] - before[0]) * n[0] + (after[1] - before[1]) * n[1] + (after[2] - before[2]) * n[2];
+}
+
 void RigidBody::drift(double dt) {
   if (freedom_.turn == Freedom::Turn::about_axis) {
     const Vec e = unit(freedom_.axis);

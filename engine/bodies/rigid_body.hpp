@@ -67,6 +67,12 @@ class RigidBody {
   double spin() const { return spin_; }  // about_axis: the rate about the axis
 
   void kick(const Vec& force, const Vec& torque, double dt);
+  // An impulse J at the world point p (contact): v += J / m, L += (p - x) x J, as the freedom
+  // lets them; the velocity of the body's point at p; and the change of that velocity along
+  // the unit n that a unit impulse along n at p makes (n . dv, 1 / effective mass).
+  void apply_impulse(const Vec& J, const Vec& p);
+  Vec velocity_at(const Vec& p) const;
+  double response(const Vec& p, const Vec& n) const;
   void drift(double dt);
 
  private:

@@ -105,7 +105,7 @@ bool SolidFix::wall_velocity(const Simulation& sim, const real q[3], real v[3]) 
 void SolidFix::external_forces(Simulation& sim) {
   before_ = now_;
   if (dynamics_) {
-    dynamics_->start_step(sim.time(), sim.timestep());
+    if (steps_bodies_) step_bodies(sim);
     place(dynamics_->transform());
   } else {
     move_to(sim.time() + sim.timestep(), true);
@@ -237,6 +237,7 @@ void SolidFix::end_of_step(Simulation& sim) {
   if (dynamics_) {
     dynamics_->end_step(load_, sim.timestep());
     check_body_speed(sim);
+    if (settles_bodies_) resolve_contacts(sim, solids_of(sim));
   }
 }
 

@@ -20,6 +20,8 @@
 
 namespace pbf {
 
+struct BodyContact;
+
 class SolidFix : public Fix, public DensityBoundary, public SolidBody {
  public:
   SolidFix(const std::string& id, const Params& p);
@@ -84,6 +86,16 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   void move_to(double t, bool within_step = false);
   void place(const RigidTransform& T);
   void check_body_speed(const Simulation& sim) const;
+  double fastest_point_speed() const;
+
+  // Bodies (solid_contact.cpp): the first body of the pipeline moves them all, contacts between.
+  static std::vector<SolidFix*> solids_of(const Simulation& sim);
+  void find_symmetry_planes(const Simulation& sim);
+  void step_bodies(Simulation& sim);
+  static void check_overlaps(const Simulation& sim, const std::vector<SolidFix*>& solids);
+  static void resolve_contacts(const Simulation& sim, const std::vector<SolidFix*>& solids);
+  void gather_contacts(const Simulation& sim, const std::vector<SolidFix*>& solids,
+                       std::vector<BodyContact>& contacts);
   void check_thickness(double spacing) const;
 
   // A world point in the frame the map was built in (the same point for a solid at rest), and
@@ -107,6 +119,10 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   bool viscous_no_slip_ = false;  // this run's: a Laplacian viscosity holds the no-slip wall
   MotionPtr motion_;  // nullptr: at rest, or a body
   std::optional<SolidDynamics> dynamics_;  // a body the fluid moves
+  bool steps_bodies_ = false;              // the pipeline's first body: it moves them all
+  bool settles_bodies_ = false;            // its last: it resolves contacts at the step's end
+  std::int64_t first_step_ = 0;            // the run's first (its overlaps checked then)
+  bool symmetry_[6] = {};                  // the domain faces it lies across (no contact there)
   Point pivot_{};
   Pose pose_;                           // where the motion has it now
   std::optional<Pose> saved_pose_;      // the restart's, until init compares

@@ -90,6 +90,11 @@ std::vector<ParamSpec> SolidDynamics::params() {
                 "a body's free translations along x, y, z, 1 or 0 (default {1, 1, 1})", true},
       ParamSpec{"free_rotation", ParamType::Vector3, std::nullopt, "",
                 "a body's free rotations about x, y, z, 1 or 0: all three, one, or none (default {1, 1, 1})", true},
+      ParamSpec{"contact_friction", ParamType::Real, std::nullopt, "",
+                "a body's Coulomb friction coefficient in contact with walls and bodies (default 0.5; two "
+                "bodies: the geometric mean)",
+                true}
+          .within(0, 10),
       ParamSpec{"hinge", ParamType::Vector3, std::nullopt, "m",
                 "a point the body turns about, on its one free rotation's axis (every translation locked)", true}
           .magnitude_at_most(1e6),
@@ -97,7 +102,9 @@ std::vector<ParamSpec> SolidDynamics::params() {
 }
 
 SolidDynamics::SolidDynamics(const std::string& id, const Params& p, const SolidShape& shape, bool fluid_inside)
-    : id_(id), hold_(p.has("hold") ? p.real("hold") : 0.0) {
+    : id_(id),
+      hold_(p.has("hold") ? p.real("hold") : 0.0),
+      contact_friction_(p.has("contact_friction") ? p.real("contact_friction") : 0.5) {
   if (p.has("density") && p.has("mass")) throw Error("give a body's 'density' or its 'mass', not both");
   if (p.has("motion")) throw Error("a body the fluid moves has no 'motion': drop 'motion' or 'density'/'mass'");
   if (p.has("inertia_products") && !p.has("inertia")) throw Error("'inertia_products' needs 'inertia'");
@@ -187,7 +194,7 @@ void SolidDynamics::kick(double dt) {
   body_.kick(F, {fluid[3], fluid[4], fluid[5]}, dt);
 }
 
-void SolidDynamics::start_step(double t, double dt) {
+void SolidDynamics::begin_step(double t, double dt) {
   moved_ = released(t);
   if (!moved_) return;
   if (!released_) {
@@ -196,7 +203,6 @@ void SolidDynamics::start_step(double t, double dt) {
     body_.set_angular_velocity(release_angular_velocity_);
   }
   kick(0.5 * dt);
-  body_.drift(dt);
 }
 
 void SolidDynamics::end_step(const std::array<double, 6>& load, double dt) {

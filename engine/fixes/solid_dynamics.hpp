@@ -29,13 +29,25 @@ class SolidDynamics {
   const RigidBody& body() const { return body_; }
   const Vec& placed_center() const { return placed_center_; }
   bool released(double t) const { return t >= hold_; }
+  double contact_friction() const { return contact_friction_; }
 
   // The rigid map from where the scene placed the solid to where it is now.
   RigidTransform transform() const;
   // Where the step from t of dt will put it (for time-step control, ahead of the step).
   RigidTransform after_step(double t, double dt) const;
-  // The step's first half: the kick of the last load and gravity over dt / 2, the drift over dt.
-  void start_step(double t, double dt);
+  // The step's first half: the kick of the last load and gravity over dt / 2 (begin_step),
+  // contacts (solid_contact.cpp), the drift over dt (drift); start_step does both, contact-free.
+  void begin_step(double t, double dt);
+  void drift(double dt) {
+    if (moved_) body_.drift(dt);
+  }
+  void start_step(double t, double dt) {
+    begin_step(t, dt);
+    drift(dt);
+  }
+  // Whether it moves in this step (released), and its body, for contacts to push.
+  bool moving() const { return moved_; }
+  RigidBody& body_in_contact() { return body_; }
   // Its second half: the kick of this step's load (force and torque about the origin, as the
   // solid measured it) and gravity over dt / 2. Throws when the body's state is no longer finite.
   void end_step(const std::array<double, 6>& load, double dt);
@@ -55,7 +67,7 @@ class SolidDynamics {
   Vec placed_center_{};
   Quaternion placed_orientation_;
   Vec gravity_{0, 0, 0};
-  double hold_ = 0;
+  double hold_ = 0, contact_friction_ = 0.5;
   Vec release_velocity_{}, release_angular_velocity_{};
   bool released_ = false, moved_ = false;  // released: set going; moved: in this step
   std::array<double, 6> load_{};           // the fluid's, about the origin

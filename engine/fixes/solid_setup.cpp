@@ -161,6 +161,12 @@ void SolidFix::init(Simulation& sim) {
     for (const auto& fix : sim.fixes())
       for (int a = 0; a < 3; ++a) g[a] += fix->body_acceleration()[a];
     dynamics_->set_gravity(g);
+    const auto solids = solids_of(sim);
+    auto is_body = [](const SolidFix* s) { return s->dynamics_.has_value(); };
+    steps_bodies_ = *std::find_if(solids.begin(), solids.end(), is_body) == this;
+    settles_bodies_ = *std::find_if(solids.rbegin(), solids.rend(), is_body) == this;
+    find_symmetry_planes(sim);
+    first_step_ = sim.step();
   }
   move_to(sim.time());
   prepare(sim);
@@ -251,17 +257,25 @@ void SolidFix::check_thickness(double spacing) const {
 // would be thrown across its neighbourhood): stop with the body's state.
 void SolidFix::check_body_speed(const Simulation& sim) const {
   const RigidBody& b = dynamics_->body();
-  const auto box = bounds(shape_.surface());
   const RigidBody::Vec v = b.velocity(), w = b.angular_velocity();
-  double reach = 0;  // the farthest corner of the placed box from the centre, as placed
-  const auto& c = dynamics_->placed_center();
-  for (int k = 0; k < 8; ++k)
-    reach = std::max(reach, std::hypot(box[k & 1][0] - c[0], box[(k >> 1) & 1][1] - c[1], box[(k >> 2) & 1][2] - c[2]));
-  const double fastest = std::hypot(v[0], v[1], v[2]) + std::hypot(w[0], w[1], w[2]) * reach;
+  const double fastest = fastest_point_speed();
   if (fastest * sim.timestep() > sim.kernel_radius())
     throw Error(fmt::format("body '{}' blew up: a point of it moves {:.3g} m/s, more than h = {:.3g} m in one step "
                             "(velocity {:.4g} {:.4g} {:.4g} m/s, angular velocity {:.4g} {:.4g} {:.4g} rad/s)",
                             id(), fastest, sim.kernel_radius(), v[0], v[1], v[2], w[0], w[1], w[2]));
+}
+
+// A bound on the speed of the body's points: |v| + |w| R, R the farthest corner of the placed
+// surface's box from the centre.
+double SolidFix::fastest_point_speed() const {
+  const RigidBody& b = dynamics_->body();
+  const auto box = bounds(shape_.surface());
+  const auto& c = dynamics_->placed_center();
+  double reach = 0;
+  for (int k = 0; k < 8; ++k)
+    reach = std::max(reach, std::hypot(box[k & 1][0] - c[0], box[(k >> 1) & 1][1] - c[1], box[(k >> 2) & 1][2] - c[2]));
+  const RigidBody::Vec v = b.velocity(), w = b.angular_velocity();
+  return std::hypot(v[0], v[1], v[2]) + std::hypot(w[0], w[1], w[2]) * reach;
 }
 
 void register_solid(StyleRegistry& r) {

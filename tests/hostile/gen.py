@@ -960,6 +960,68 @@ def gen_lua_rules(g):
     add("motion_pivot_alone", "a pivot without a motion: refused",
         scene + pipe + ['@pbf.fix("ball", "solid", {shape = "sphere", center = {0.06, 0.06, 0.06}, radius = 0.02, '
                         "pivot = {0, 0, 0}})", "pbf.run(1)"], "refused", "line", "pivot")
+    g.section("Bodies the fluid moves (a solid with a density or a mass): masses, densities and inertias that "
+              "are not positive, finite or a body's; axes held in no rigid way; a hinge without its one axis; body "
+              "parameters on a solid that is no body; bodies placed inside each other or across a wall; a body "
+              "thrown faster than a step can follow. Each names the parameter or the bodies.")
+    body = ('pbf.fix("crate", "solid", {shape = "box", lo = {0.07, 0.07, 0.07}, hi = {0.09, 0.09, 0.09}, %s})')
+    for label, params, outcome, kind, says in [
+            ("density_zero", "density = 0", "refused", "line", "'density'"),
+            ("density_negative", "density = -500", "refused", "line", "'density'"),
+            ("density_nan", "density = 0/0", "refused", "line", "'density'"),
+            ("density_inf", "density = 1/0", "refused", "line", "'density'"),
+            ("density_huge", "density = 1e300", "refused", "line", "'density'"),
+            ("mass_zero", "mass = 0", "refused", "line", "'mass'"),
+            ("mass_negative", "mass = -1", "refused", "line", "'mass'"),
+            ("mass_nan", "mass = 0/0", "refused", "line", "'mass'"),
+            ("density_and_mass", "density = 500, mass = 1", "refused", "line", "'density' && not both"),
+            ("inertia_negative", "mass = 1, inertia = {-1, 1, 1}", "refused", "line", "'inertia'"),
+            ("inertia_zero", "mass = 1, inertia = {0, 1, 1}", "refused", "line", "'inertia'"),
+            ("inertia_not_definite", "mass = 1, inertia = {1, 1, 1}, inertia_products = {2, 0, 0}", "refused",
+             "line", "'inertia' && positive definite"),
+            ("inertia_no_body", "mass = 1, inertia = {1, 1, 5}", "refused", "line", "'inertia' && exceeds the sum"),
+            ("inertia_products_alone", "mass = 1, inertia_products = {0, 0, 0}", "refused", "line",
+             "'inertia_products' && needs 'inertia'"),
+            ("free_rotation_two", "density = 500, free_rotation = {1, 1, 0}", "refused", "line", "'free_rotation'"),
+            ("free_rotation_half", "density = 500, free_rotation = {0.5, 0, 0}", "refused", "line",
+             "'free_rotation' && 1 (free) or 0"),
+            ("free_translation_two", "density = 500, free_translation = {2, 1, 1}", "refused", "line",
+             "'free_translation'"),
+            ("hinge_three_rotations", "density = 500, hinge = {0.08, 0.08, 0.09}", "refused", "line",
+             "'hinge' && exactly one rotation"),
+            ("hinge_nan", "density = 500, free_rotation = {0, 1, 0}, hinge = {0/0, 0, 0}", "refused", "line",
+             "'hinge'"),
+            ("hinge", "density = 500, free_rotation = {0, 1, 0}, hinge = {0.08, 0.08, 0.09}", "accepted", "line", ""),
+            ("velocity_nan", "density = 500, velocity = {0/0, 0, 0}", "refused", "line", "'velocity'"),
+            ("angular_velocity_huge", "density = 500, angular_velocity = {1e300, 0, 0}", "refused", "line",
+             "'angular_velocity'"),
+            ("hold_negative", "density = 500, hold = -1", "refused", "line", "'hold'"),
+            ("velocity_without_mass", "velocity = {1, 0, 0}", "refused", "line", "'velocity' && 'density' or a 'mass'"),
+            ("hinge_without_mass", "free_rotation = {0, 1, 0}, hinge = {0, 0, 0}", "refused", "line",
+             "'free_rotation' && 'density' or a 'mass'"),
+            ("container", 'density = 500, fluid = "inside"', "refused", "line", "container && 'mass'"),
+            ("motion_and_mass", "density = 500, motion = function(t) return {} end", "refused", "line",
+             "'motion'"),
+            ("thrown", "density = 500, velocity = {5000, 0, 0}", "refused", "file", "crate && blew up"),
+            ("heave", "density = 500, free_translation = {0, 0, 1}, free_rotation = {0, 0, 0}", "accepted", "line",
+             "")]:
+        add(f"body_{label}", f"a body with {params}: {outcome}",
+            scene + pipe + ["@" + body % params, "pbf.run(2)"], outcome, kind, says)
+    add("body_plane", "a plane with a density: refused (a plane cannot move)",
+        scene + pipe + ['@pbf.fix("floor", "solid", {shape = "plane", point = {0, 0, 0.01}, normal = {0, 0, 1}, '
+                        "density = 500})", "pbf.run(1)"], "refused", "line", "'floor' && plane")
+    add("body_overlap", "two bodies placed inside each other: refused at the first step, naming both",
+        scene + pipe + [body % "density = 500",
+                        'pbf.fix("lid", "solid", {shape = "box", lo = {0.075, 0.075, 0.085}, hi = {0.095, 0.095, '
+                        '0.097}, density = 500})', "@pbf.run(1)"], "refused", "line", "overlaps && crate && lid")
+    add("body_across_wall", "a body across a wall of the domain, free to move through it: refused (a symmetry "
+        "plane needs the body held across it)",
+        scene + pipe + ['@pbf.fix("crate", "solid", {shape = "box", lo = {-0.01, 0.07, 0.07}, hi = {0.01, 0.09, '
+                        '0.09}, density = 500})', "pbf.run(1)"], "refused", "file", "'crate' && symmetry plane")
+    add("body_symmetry_plane", "half a body on the plane x = 0, held to heave: accepted (a half model)",
+        scene + pipe + ['@pbf.fix("crate", "solid", {shape = "box", lo = {-0.01, 0.07, 0.07}, hi = {0.01, 0.09, '
+                        '0.09}, density = 500, free_translation = {0, 0, 1}, free_rotation = {0, 0, 0}})',
+                        "pbf.run(2)"], "accepted", "line", "")
     g.section("Emitters whose speed or velocity is a Lua function of time and place: functions that fail, "
               "return no number or vector, or a value that is not finite, too fast, or back into the opening (at "
               "once or later); each names the emitter and the parameter. A zero speed pauses the inflow (legal).")

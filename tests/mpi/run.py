@@ -260,6 +260,14 @@ def identical_solid(args, work):
           "1, 2 and 3 ranks")
 
 
+def identical_floating(args, work):
+    scenario = os.path.join(HERE, "..", "..", "scenarios", "floating.lua")
+    variables = {"particles": 4000, "t_end": 0.6, "images": 0.3}
+    same_outputs(args, work, scenario, variables, ["thermo.csv", "image_00002.png"], least_frames=0)
+    print("floating bodies (four, falling into the tank and meeting the floor): their poses in thermo.csv and the "
+          "pictures identical at 1, 2 and 3 ranks")
+
+
 def sources(args, work):
     """Each rank creates its share of every source, and the run is one process's."""
     path = os.path.join(work, "block.csv")
@@ -511,7 +519,7 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_flow", "identical_periodic", "identical_wcsph", "identical_solid", "sources", "scene_file", "restart", "restart_wcsph",
+                        choices=["identical", "identical_flow", "identical_periodic", "identical_wcsph", "identical_solid", "identical_floating", "sources", "scene_file", "restart", "restart_wcsph",
                                  "script_error",
                                  "rank_error", "per_particle", "signals"])
     args = parser.parse_args()

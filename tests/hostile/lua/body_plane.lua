@@ -1,0 +1,10 @@
+-- a plane with a density: refused (a plane cannot move)
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.fix("floor", "solid", {shape = "plane", point = {0, 0, 0.01}, normal = {0, 0, 1}, density = 500})
+pbf.run(1)
