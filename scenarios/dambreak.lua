@@ -23,6 +23,9 @@
 -- the tank repeats ("y": an endless tank's quasi-2D flow). solver: "pbf" (default) or
 -- "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000 particles by default, as its steps
 -- are set by the sound speed: alpha, eos, sound_speed, courant and fixed_dt pass to it; scenarios/dambreak_wcsph.lua runs it).
+-- flap: a gate hinged along its top edge across the tank, 3a from the back wall (a body the
+-- surge swings open; docs/user-guide.md#bodies): its density in kg/m^3 (-v flap=800), a tall,
+-- a/10 thick, its lower edge a/4 above the floor; thermo's `flap` column is its angle (degrees).
 -- Output beyond the text frames: images (seconds between PNG pictures, out/image_*.png),
 -- movie (an mp4 path, 50 pictures per simulated second), vtk (seconds between ParaView
 -- frames, out/vtk/frame_*.vtu and out/vtk/frame.pvd).
@@ -90,6 +93,14 @@ pbf.fix("walls", "box", {wall_density = flag(var.wall_density, true, "wall_densi
 require("outputs").add(out, {color = "speed", min = 0, max = 2.5, direction = {1, 2.2, -0.9}, zoom = 1.4})
 require("outputs").frames(out, 0.25)
 
+local columns = {"step", "time", "dt", "front", "far", "back", "err.avg", "err.max", "err.compression", "ke"}
+if var.flap then
+  local t = math.max(2 * s, a / 10)
+  pbf.fix("flap", "solid", {shape = "box", lo = {3 * a - t / 2, 0, a / 4}, hi = {3 * a + t / 2, depth, 1.25 * a},
+                            density = var.flap, free_rotation = {0, 1, 0}, hinge = {3 * a, depth / 2, 1.25 * a}})
+  pbf.compute("gate", "body", {solid = "flap"})
+  columns[#columns + 1] = "gate.ry"
+end
 pbf.compute("err", "density_error")
 pbf.compute("front", "front", {axis = "x", percentile = var.percentile or 99})
 pbf.compute("far", "front", {axis = "x", percentile = 100})
@@ -98,7 +109,7 @@ pbf.compute("ke", "kinetic_energy")
 pbf.thermo{every = math.max(1, math.floor((var.thermo or 0.01) / dt_typical)),
            -- a continued run keeps the first run's rows before the restart and writes the rest again
            csv = var.csv or (out ~= "" and out .. "/thermo.csv" or nil),
-           columns = {"step", "time", "dt", "front", "far", "back", "err.avg", "err.max", "err.compression", "ke"}}
+           columns = columns}
 
 print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %s%.4g s, to t = %g s", solver,
                     pbf.count(), a, pbf.kernel_radius(), solver == "wcsph" and "<= " or "", dt, t_end))

@@ -2,7 +2,7 @@
 # Makes the pictures of docs/gallery.md and the README with the scenarios themselves: each
 # runs with -v images=T (dump/image) and the chosen frames are copied into docs/.
 #
-#   share/make_gallery.sh [PBFENGINE]        (about six minutes on 2 cores)
+#   share/make_gallery.sh [PBFENGINE]        (about eight minutes on 2 cores)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 engine="${1:-$root/build/pbfengine}"
@@ -17,6 +17,7 @@ run "$root/scenarios/obstacle.lua" -v t_end=0.4 -v images=0.1 -v out="$out/obsta
 run "$root/scenarios/wave_flume.lua" -v t_end=5.5 -v images=0.5 -v out="$out/flume"
 run "$root/scenarios/fountain.lua" -v t_end=2 -v images=0.5 -v out="$out/fountain" -v restart_interval=0
 run "$root/scenarios/channel.lua" -v t_end=1.5 -v images=0.25 -v out="$out/channel" -v restart_interval=0
+run "$root/scenarios/floating.lua" -v t_end=2 -v images=0.2 -v out="$out/floating"
 
 cp "$out/dambreak/image_00003.png" "$root/docs/images/dambreak.png"   # t = 0.3 s, the README's
 for k in 1 3 6; do cp "$out/dambreak/image_0000$k.png" "$root/docs/gallery/dambreak_$k.png"; done
@@ -26,5 +27,6 @@ for k in 2 3 4; do cp "$out/obstacle/image_0000$k.png" "$root/docs/gallery/obsta
 for k in 10 11; do cp "$out/flume/image_000$k.png" "$root/docs/gallery/wave_flume_$k.png"; done
 for k in 1 2 4; do cp "$out/fountain/image_0000$k.png" "$root/docs/gallery/fountain_$k.png"; done
 for k in 1 2 6; do cp "$out/channel/image_0000$k.png" "$root/docs/gallery/channel_$k.png"; done
+for k in 02 03 10; do cp "$out/floating/image_000$k.png" "$root/docs/gallery/floating_${k#0}.png"; done
 rm -rf "$out"
 echo "make_gallery.sh: pictures in docs/gallery/ and docs/images/dambreak.png"

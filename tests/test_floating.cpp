@@ -302,3 +302,57 @@ TEST(Body, AHeavyBallSinksToTheFloorAndRests) {
     EXPECT_LT(std::hypot(ball.position()[0] - lies[0], ball.position()[1] - lies[1]), 0.2 * s);
   }
 }
+
+// A spring: a box of 1.2 kg hung in air from a fixed point on a spring of 300 N/m, damping 0,
+// held to heave, released at the spring's rest length, oscillates about the stretch m g / k at
+// the period 2 pi sqrt(m / k) (within 1e-3: the Verlet's phase error (w dt)^2 / 24 at 200
+// steps a period), and the spring compute reads the tension k (L - L0). Two boxes joined by a
+// spring, out of gravity, pushed apart: their momentum stays zero to round-off.
+TEST(Body, ASpringHoldsABodyAtItsStretchAndPeriod) {
+  const double m = 1.2, k = 300, g = 9.81, T = 2 * M_PI * std::sqrt(m / k);
+  Simulation sim;
+  corner_block(sim);
+  sim.set_timestep(T / 200);
+  sim.add_fix(fix("gravity", "gravity"));
+  sim.add_fix(fix("pbf", "pbf"));
+  sim.add_fix(fix("walls", "box"));
+  sim.add_fix(fix("bob", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
+                                   {"hi", Vec3{0.3, 0.15, 0.25}}, {"mass", m}, {"free_translation", Vec3{0, 0, 1}},
+                                   {"free_rotation", Vec3{0, 0, 0}}}));
+  sim.add_fix(fix("line", "spring", {{"body", std::string("bob")}, {"at", Vec3{0.25, 0.1, 0.25}},
+                                     {"to", Vec3{0.25, 0.1, 0.35}}, {"stiffness", k}}));
+  sim.add_compute(StyleRegistry::builtin().make_compute("s", "spring_tension", {{"fix", std::string("line")}}));
+  std::vector<double> crossings, values;
+  const double rest = 0.225 - m * g / k;  // the centre's equilibrium
+  double last = 0.225 - rest, lowest = 1;
+  for (int step = 0; step < 1000; ++step) {
+    sim.run(1);
+    const double z = dynamics_of(sim, "bob").body().position()[2] - rest;
+    lowest = std::min(lowest, z + rest);
+    if ((z < 0) != (last < 0)) crossings.push_back(sim.time() - sim.timestep() * z / (z - last));
+    last = z;
+  }
+  const double period = 2 * (crossings.back() - crossings.front()) / double(crossings.size() - 1);
+  EXPECT_NEAR(period / T, 1, 1e-3);
+  EXPECT_NEAR(lowest, 0.225 - 2 * m * g / k, 1e-3 * m * g / k);  // it swings down twice the stretch
+  sim.find_compute("s")->evaluate(sim, values);
+  const double length = 0.35 - (dynamics_of(sim, "bob").body().position()[2] + 0.025);
+  EXPECT_NEAR(values[1], length, 1e-12);
+  EXPECT_NEAR(values[0], k * (length - 0.1), 1e-9);
+  EXPECT_NEAR(values[4], values[0], 1e-12);
+
+  Simulation pair;
+  corner_block(pair);
+  pair.add_fix(fix("pbf", "pbf"));
+  pair.add_fix(fix("walls", "box"));
+  pair.add_fix(fix("a", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.1, 0.05, 0.2}},
+                                  {"hi", Vec3{0.15, 0.1, 0.25}}, {"mass", 1.0}, {"velocity", Vec3{-0.1, 0, 0.05}}}));
+  pair.add_fix(fix("b", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.25, 0.05, 0.2}},
+                                  {"hi", Vec3{0.3, 0.15, 0.25}}, {"mass", 2.0}, {"velocity", Vec3{0.05, 0, -0.025}}}));
+  pair.add_fix(fix("tie", "spring", {{"body", std::string("a")}, {"at", Vec3{0.15, 0.075, 0.25}}, {"to_body", std::string("b")},
+                                     {"to", Vec3{0.25, 0.1, 0.2}}, {"stiffness", 50.0}, {"damping", 0.5}}));
+  pair.run(300);
+  const auto &a = dynamics_of(pair, "a").body(), &b = dynamics_of(pair, "b").body();
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.velocity()[c] + 2 * b.velocity()[c], 0, 1e-15) << c;
+  EXPECT_GT(std::abs(a.velocity()[0] + 0.1), 0.01);  // the spring has acted
+}

@@ -16,7 +16,7 @@ const StyleRegistry& styles() { return StyleRegistry::builtin(); }
 // Parameters that make an instance of each compute style.
 GivenParams example_params(const std::string& style) {
   if (style == "load" || style == "body") return {{"solid", std::string("s")}};
-  if (style == "flow") return {{"fix", std::string("drain")}};
+  if (style == "flow" || style == "spring_tension") return {{"fix", std::string("drain")}};
   if (style == "probe" || style == "gauge") return {{"points", Points{{0, 0, 0}, {1, 1, 1}}}};
   return {};
 }
@@ -47,7 +47,7 @@ TEST(Thermo, EveryComputeStyleDeclaresAUnitPerValue) {
       }
     }
   }
-  EXPECT_EQ(computes, 14);
+  EXPECT_EQ(computes, 15);
 }
 
 TEST(Thermo, ALabelledSinglePointKeepsItsName) {

@@ -17,6 +17,7 @@ namespace pbf {
 class Simulation;
 class DensityBoundary;
 class SolidBody;
+class BodyForce;
 class ByteWriter;
 class ByteReader;
 class ParticleFlow;
@@ -64,6 +65,8 @@ class Fix {
   // The acceleration this fix gives every free body (a `solid` with a mass) as well as the
   // fluid: gravity's g. The bodies add up every fix's.
   virtual std::array<double, 3> body_acceleration() const { return {0, 0, 0}; }
+  // A force on bodies besides the fluid's and gravity (a `spring`; nullptr: none).
+  virtual const BodyForce* body_force() const { return nullptr; }
   // A job only one fix of a pipeline may do ("time integration", "walls at the domain
   // faces", ...): a second fix with the same job is refused when it is added. nullptr: none.
   virtual const char* exclusive_job() const { return nullptr; }

@@ -22,6 +22,7 @@
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/output/dump.hpp"
+#include "engine/fixes/solid_dynamics.hpp"
 #include "engine/io/vtp.hpp"
 #include "engine/io/vtu.hpp"
 #include "engine/core/simulation.hpp"
@@ -227,7 +228,12 @@ class DumpVtk : public Dump {
     const std::string file = (dir / (version == 0 && first ? fmt::format("{}_solid_{}.vtp", stem_, name)
                                                            : fmt::format("{}_solid_{}_{:05d}.vtp", stem_, name, frame)))
                                  .string();
-    if (comm::root()) write_vtp(file, solid.surface());  // a distributed run's are rank 0's to write
+    if (comm::root()) {  // a distributed run's are rank 0's to write
+      std::vector<Point> velocity;  // a body's: its points' velocities
+      if (const SolidDynamics* body = solid.dynamics())
+        for (const Point& p : solid.surface().vertices) velocity.push_back(body->body().velocity_at(p));
+      write_vtp(file, solid.surface(), solid.dynamics() ? &velocity : nullptr);
+    }
     if (first) it = surfaces_.insert(surfaces_.end(), Surface{});
     *it = Surface{name, version, fingerprint(solid.surface()), file};
     return file;

@@ -235,6 +235,7 @@ void SolidFix::end_of_step(Simulation& sim) {
       ranks);
   for (int k = 0; k < 6; ++k) load_[k] = -inv_dt * sums[static_cast<std::size_t>(k)];
   if (dynamics_) {
+    if (steps_bodies_) set_pulls(sim, solids_of(sim));  // the first body's end: none kicked yet
     dynamics_->end_step(load_, sim.timestep());
     check_body_speed(sim);
     if (settles_bodies_) resolve_contacts(sim, solids_of(sim));

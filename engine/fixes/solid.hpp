@@ -93,6 +93,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   void find_symmetry_planes(const Simulation& sim);
   void step_bodies(Simulation& sim);
   static void check_overlaps(const Simulation& sim, const std::vector<SolidFix*>& solids);
+  static void set_pulls(const Simulation& sim, const std::vector<SolidFix*>& solids);
   static void resolve_contacts(const Simulation& sim, const std::vector<SolidFix*>& solids);
   void gather_contacts(const Simulation& sim, const std::vector<SolidFix*>& solids,
                        std::vector<BodyContact>& contacts);

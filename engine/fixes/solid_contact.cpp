@@ -179,9 +179,21 @@ void SolidFix::check_overlaps(const Simulation& sim, const std::vector<SolidFix*
   }
 }
 
+// Every spring's pull on every body, from the bodies' states now (before any is kicked).
+void SolidFix::set_pulls(const Simulation& sim, const std::vector<SolidFix*>& solids) {
+  for (SolidFix* s : solids) {
+    if (!s->dynamics_) continue;
+    Vec force{0, 0, 0}, torque{0, 0, 0};
+    for (const auto& fix : sim.fixes())
+      if (const BodyForce* f = fix->body_force()) f->add_to(*s->dynamics_, force, torque);
+    s->dynamics_->set_pull({force[0], force[1], force[2], torque[0], torque[1], torque[2]});
+  }
+}
+
 void SolidFix::step_bodies(Simulation& sim) {
   const std::vector<SolidFix*> solids = solids_of(sim);
   if (sim.step() == first_step_) check_overlaps(sim, solids);
+  set_pulls(sim, solids);
   for (SolidFix* s : solids)
     if (s->dynamics_) {
       s->dynamics_->begin_step(sim.time(), sim.timestep());

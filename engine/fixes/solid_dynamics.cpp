@@ -189,9 +189,10 @@ RigidTransform SolidDynamics::after_step(double t, double dt) const {
 
 void SolidDynamics::kick(double dt) {
   const double m = body_.mass();
-  const Vec F{load_[0] + m * gravity_[0], load_[1] + m * gravity_[1], load_[2] + m * gravity_[2]};
+  const Vec F{load_[0] + m * gravity_[0] + pull_[0], load_[1] + m * gravity_[1] + pull_[1],
+              load_[2] + m * gravity_[2] + pull_[2]};
   const auto fluid = fluid_load();
-  body_.kick(F, {fluid[3], fluid[4], fluid[5]}, dt);
+  body_.kick(F, {fluid[3] + pull_[3], fluid[4] + pull_[4], fluid[5] + pull_[5]}, dt);
 }
 
 void SolidDynamics::begin_step(double t, double dt) {

@@ -14,6 +14,17 @@
 
 namespace pbf {
 
+class SolidDynamics;
+
+// What pulls on bodies besides the fluid and gravity (a `spring`, engine/fixes/spring.cpp).
+class BodyForce {
+ public:
+  virtual ~BodyForce() = default;
+  // Adds the force (N) and its torque about the body's centre (N m) on `body`, at the state
+  // the bodies are in now.
+  virtual void add_to(const SolidDynamics& body, std::array<double, 3>& force, std::array<double, 3>& torque) const = 0;
+};
+
 class SolidDynamics {
  public:
   using Vec = RigidBody::Vec;
@@ -51,6 +62,9 @@ class SolidDynamics {
   // Its second half: the kick of this step's load (force and torque about the origin, as the
   // solid measured it) and gravity over dt / 2. Throws when the body's state is no longer finite.
   void end_step(const std::array<double, 6>& load, double dt);
+  // The pull of springs over the next half kick (force, torque about the centre), set for
+  // every body before any is kicked, so that a spring between two pulls both alike.
+  void set_pull(const std::array<double, 6>& pull) { pull_ = pull; }
   // The turn since the scene placed it, as a rotation vector (its axis times its angle, rad).
   Vec rotation() const;
   // The fluid's last load: force, and torque about the centre of mass.
@@ -71,6 +85,7 @@ class SolidDynamics {
   Vec release_velocity_{}, release_angular_velocity_{};
   bool released_ = false, moved_ = false;  // released: set going; moved: in this step
   std::array<double, 6> load_{};           // the fluid's, about the origin
+  std::array<double, 6> pull_{};           // the springs', about the centre
 };
 
 }  // namespace pbf

@@ -10,7 +10,7 @@
 
 namespace pbf {
 
-void write_vtp(const std::string& path, const TriangleMesh& mesh) {
+void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<std::array<double, 3>>* velocity) {
   const std::size_t points = mesh.vertices.size(), polys = mesh.triangles.size();
   for (std::size_t t = 0; t < polys; ++t)
     for (std::uint32_t v : mesh.triangles[t])
@@ -21,8 +21,16 @@ void write_vtp(const std::string& path, const TriangleMesh& mesh) {
   VtkAppendedFile out(path, "PolyData");
   out.head(
       fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
-                  "NumberOfPolys=\"{}\">\n      <Points>\n",
+                  "NumberOfPolys=\"{}\">\n",
                   points, polys));
+  if (velocity) {
+    if (velocity->size() != points)
+      throw Error(fmt::format("{}: {} velocities for {} vertices", path, velocity->size(), points));
+    out.head("      <PointData Vectors=\"velocity\">\n");
+    out.declare("Float64", "velocity", 3, points * 3 * sizeof(double));
+    out.head("      </PointData>\n");
+  }
+  out.head("      <Points>\n");
   out.declare("Float64", "Points", 3, points * 3 * sizeof(double));
   out.head("      </Points>\n      <Polys>\n");
   out.declare("Int64", "connectivity", 1, polys * 3 * 8);
@@ -30,6 +38,7 @@ void write_vtp(const std::string& path, const TriangleMesh& mesh) {
   out.head("      </Polys>\n    </Piece>\n");
 
   static_assert(sizeof(mesh.vertices[0]) == 3 * sizeof(double), "vertices are packed x, y, z");
+  if (velocity) out.block(velocity->data(), points * 3 * sizeof(double));
   out.block(mesh.vertices.data(), points * 3 * sizeof(double));
   // The indices widened to Int64 (what VTK's own writers use) in chunks, not materialised.
   constexpr std::size_t kChunk = 1024;

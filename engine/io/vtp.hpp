@@ -3,13 +3,15 @@
 // triangle as a polygon (Polys: connectivity and offsets), in the appended binary layout of
 // the particle frames (engine/io/vtk_appended.hpp), so ParaView shows solids beside them.
 #include <string>
+#include <vector>
 
 #include "engine/geometry/triangle_mesh.hpp"
 
 namespace pbf {
 
-// Writes `mesh` to `path` (through PATH.tmp and a rename). Throws pbf::Error naming the path
-// if a triangle names a vertex the mesh does not have, or if the file cannot be written.
-void write_vtp(const std::string& path, const TriangleMesh& mesh);
+// Writes `mesh` to `path` (through PATH.tmp and a rename), with `velocity` (m/s, one per
+// vertex: a body's point velocities) as PointData when given. Throws pbf::Error naming the
+// path if a triangle names a vertex the mesh does not have, or if the file cannot be written.
+void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<std::array<double, 3>>* velocity = nullptr);
 
 }  // namespace pbf

@@ -8,6 +8,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_pbf(r);
   register_box(r);
   register_solid(r);
+  register_spring(r);
   register_vorticity(r);
   register_xsph(r);
   register_wcsph(r);
@@ -35,6 +36,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_compute_front(r);
   register_compute_load(r);
   register_compute_body(r);
+  register_compute_spring(r);
   register_compute_probe(r);
   register_compute_gauge(r);
 }

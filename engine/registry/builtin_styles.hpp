@@ -18,6 +18,7 @@ auto make_compute() {
 }
 
 void register_gravity(StyleRegistry&);
+void register_spring(StyleRegistry&);
 void register_pbf(StyleRegistry&);
 void register_box(StyleRegistry&);
 void register_solid(StyleRegistry&);
@@ -49,6 +50,7 @@ void register_compute_extent(StyleRegistry&);
 void register_compute_front(StyleRegistry&);
 void register_compute_load(StyleRegistry&);
 void register_compute_body(StyleRegistry&);
+void register_compute_spring(StyleRegistry&);
 void register_compute_probe(StyleRegistry&);
 void register_compute_gauge(StyleRegistry&);
 

@@ -1007,6 +1007,20 @@ def gen_lua_rules(g):
              "")]:
         add(f"body_{label}", f"a body with {params}: {outcome}",
             scene + pipe + ["@" + body % params, "pbf.run(2)"], outcome, kind, says)
+    spring = ('pbf.fix("line", "spring", {body = "crate", at = {0.08, 0.08, 0.07}, to = {0.08, 0.08, 0.01}, %s})')
+    for label, params, outcome, kind, says in [
+            ("stiffness_negative", "stiffness = -1", "refused", "line", "'stiffness'"),
+            ("stiffness_nan", "stiffness = 0/0", "refused", "line", "'stiffness'"),
+            ("stiffness_missing", "damping = 1", "refused", "line", "'stiffness'"),
+            ("damping_negative", "stiffness = 10, damping = -1", "refused", "line", "'damping'"),
+            ("length_negative", "stiffness = 10, length = -0.1", "refused", "line", "'length'"),
+            ("to_itself", 'stiffness = 10, to_body = "crate"', "refused", "line", "'to_body' && 'crate'"),
+            ("cable", "stiffness = 10, cable = true", "accepted", "line", "")]:
+        add(f"spring_{label}", f"a spring with {params}: {outcome}",
+            scene + pipe + [body % "density = 500", "@" + spring % params, "pbf.run(2)"], outcome, kind, says)
+    add("spring_no_body", "a spring to a solid that is no body: refused when the run starts, naming it",
+        scene + pipe + [body % "", 'pbf.fix("line", "spring", {body = "crate", at = {0.08, 0.08, 0.07}, to = {0.08, '
+                        '0.08, 0.01}, stiffness = 10})', "@pbf.run(1)"], "refused", "file", "'body' && 'crate'")
     add("body_plane", "a plane with a density: refused (a plane cannot move)",
         scene + pipe + ['@pbf.fix("floor", "solid", {shape = "plane", point = {0, 0, 0.01}, normal = {0, 0, 1}, '
                         "density = 500})", "pbf.run(1)"], "refused", "line", "'floor' && plane")
