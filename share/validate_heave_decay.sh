@@ -57,7 +57,7 @@ run pbf_03_s010 "PBF, H0 = 0.3 D, spacing 0.01 m" h0=0.3 spacing=0.01
   echo "Measured $(date -u +%Y-%m-%d) on $(lscpu | grep 'Model name' | sed 's/.*: *//') with OMP_NUM_THREADS=${OMP_NUM_THREADS:-unset},"
   echo "by \`share/validate_heave_decay.sh\` (engine $(git rev-parse --short HEAD)), one simulation at a time."
   echo
-  echo "**The experiment** (\`/work/shared/validation/kramer_2021_sphere_heave_decay_{01D,03D,05D}.csv\`, the"
+  echo "**The experiment** (\`../shared/validation/kramer_2021_sphere_heave_decay_{01D,03D,05D}.csv\`, the"
   echo "mean of 4 repetitions and its 95% band): a sphere D = 0.3 m, mass 7.056 kg, floating half submerged in"
   echo "water of 998.2 kg/m^3 (g = 9.82 m/s^2), 0.9 m deep, released from rest with its centre H0 above"
   echo "equilibrium, heave only. Compared: z(t)/z(0) against t/Te0, Te0 = 0.7561 s; the requirement (issue 33):"

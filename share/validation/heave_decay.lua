@@ -2,7 +2,7 @@
 -- A sphere of diameter D = 0.3 m and mass 7.056 kg floats half submerged in water of density
 -- 998.2 kg/m^3 (g = 9.82 m/s^2); released from rest with its centre H0 above its equilibrium it
 -- moves in heave only and its oscillation decays as it radiates waves
--- (/work/shared/validation/kramer_2021_sphere_heave_decay_*.csv; share/validate_heave_decay.sh
+-- (../shared/validation/kramer_2021_sphere_heave_decay_*.csv; share/validate_heave_decay.sh
 -- compares z(t)/z(0) with the measured mean against t/0.7561 s, docs/validation/heave_decay.md).
 --
 -- The quarter model: the sphere's centre stands on the domain's corner x = 0, y = 0 and the box's

@@ -7,7 +7,7 @@ confidence band.
     plot_heave_decay.py --png PNG --table MD RUN_DIR:LABEL [RUN_DIR:LABEL ...]
 
 Each RUN_DIR holds body.csv and meta.txt (written by heave_decay.lua). The measured file is
-chosen by the run's H0/D (meta.txt h0_ratio): /work/shared/validation (or $KRAMER_DIR)
+chosen by the run's H0/D (meta.txt h0_ratio): ../shared/validation beside the checkout (or $KRAMER_DIR)
 kramer_2021_sphere_heave_decay_{01D,03D,05D}.csv. z is the sphere centre's height above the
 equilibrium the run computed (z_eq), divided by the measured initial offset H0m; t is from the
 release. Extrema: the samples' minimum in t/Te0 in [0.25, 0.8] (trough) and maximum in
@@ -27,7 +27,8 @@ import csv
 import os
 
 TE0 = 0.7561
-KRAMER = os.environ.get("KRAMER_DIR", "/work/shared/validation")
+KRAMER = os.environ.get(
+    "KRAMER_DIR", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "validation"))
 
 
 def meta(run):
