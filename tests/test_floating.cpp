@@ -271,6 +271,35 @@ TEST(Body, BodiesComeToRestOnTheFloorAndOnEachOther) {
     EXPECT_LT(std::hypot(b->velocity()[0], b->velocity()[1], b->velocity()[2]), 1e-4);
     EXPECT_LT(std::hypot(b->angular_velocity()[0], b->angular_velocity()[1], b->angular_velocity()[2]), 1e-3);
   }
+  // At rest, the contacts bear each body's weight (the plank: the floor's push less the
+  // block's), over a step, with what the water bears (the corner block has spread over the
+  // floor by now, a film under the plank): within 1e-4 of the weight (the rest speed's
+  // change over a step, 1e-4 m/s against g dt = 0.02 m/s, bounds the imbalance at 5e-3).
+  for (const char* name : {"plank", "block"}) {
+    const auto& d = dynamics_of(sim, name);
+    const double weight = d.body().mass() * 9.81;
+    EXPECT_NEAR((d.contact_force()[2] + d.fluid_load()[2]) / weight, 1, 5e-3) << name;
+    EXPECT_NEAR(d.contact_force()[0] + d.fluid_load()[0], 0, 5e-3 * weight) << name;
+  }
+}
+
+// A hinged gate hanging at rest below its hinge: the hinge holds its weight (the held force's
+// z is m g, to round-off); its angle stays 0.
+TEST(Body, AHingeHoldsAHangingGatesWeight) {
+  Simulation sim;
+  corner_block(sim);
+  sim.add_fix(fix("gravity", "gravity"));
+  sim.add_fix(fix("pbf", "pbf"));
+  sim.add_fix(fix("walls", "box"));
+  sim.add_fix(fix("gate", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
+                                    {"hi", Vec3{0.22, 0.15, 0.3}}, {"density", 700.0},
+                                    {"free_rotation", Vec3{0, 1, 0}}, {"hinge", Vec3{0.21, 0.1, 0.3}}}));
+  sim.run(50);
+  const auto& gate = dynamics_of(sim, "gate");
+  const double weight = gate.body().mass() * 9.81;
+  EXPECT_NEAR(gate.held_force()[2] / weight, 1, 1e-9);
+  EXPECT_NEAR(gate.held_force()[0] / weight, 0, 1e-9);
+  EXPECT_NEAR(gate.rotation()[1], 0, 1e-12);
 }
 
 // A body that must sink sinks: a ball of twice the water's density, released at mid-depth in a

@@ -106,7 +106,12 @@ void RigidBody::set_state(const Vec& position, const Vec& velocity, const Quater
   spin_ = spin;
 }
 
+void RigidBody::count_held(const Vec& before, const Vec& applied) {
+  for (int a = 0; a < 3; ++a) held_impulse_[a] += mass_ * (velocity_[a] - before[a]) - applied[a];
+}
+
 void RigidBody::kick(const Vec& force, const Vec& torque, double dt) {
+  const Vec before = velocity_;
   switch (freedom_.turn) {
     case Freedom::Turn::free:
       for (int a = 0; a < 3; ++a) angular_momentum_[a] += torque[a] * dt;
@@ -125,13 +130,15 @@ void RigidBody::kick(const Vec& force, const Vec& torque, double dt) {
   }
   if (freedom_.hinged) {
     set_velocity(velocity_);
-    return;
+  } else {
+    for (int a = 0; a < 3; ++a)
+      if (freedom_.move[a]) velocity_[a] += force[a] / mass_ * dt;
   }
-  for (int a = 0; a < 3; ++a)
-    if (freedom_.move[a]) velocity_[a] += force[a] / mass_ * dt;
+  count_held(before, {force[0] * dt, force[1] * dt, force[2] * dt});
 }
 
 void RigidBody::apply_impulse(const Vec& J, const Vec& p) {
+  const Vec before = velocity_;
   const Vec r{p[0] - position_[0], p[1] - position_[1], p[2] - position_[2]}, moment = cross(r, J);
   switch (freedom_.turn) {
     case Freedom::Turn::free:
@@ -151,10 +158,11 @@ void RigidBody::apply_impulse(const Vec& J, const Vec& p) {
   }
   if (freedom_.hinged) {
     set_velocity(velocity_);
-    return;
+  } else {
+    for (int a = 0; a < 3; ++a)
+      if (freedom_.move[a]) velocity_[a] += J[a] / mass_;
   }
-  for (int a = 0; a < 3; ++a)
-    if (freedom_.move[a]) velocity_[a] += J[a] / mass_;
+  count_held(before, J);
 }
 
 RigidBody::Vec RigidBody::velocity_at(const Vec& p) const {
@@ -178,7 +186,9 @@ void RigidBody::drift(double dt) {
       const Vec r = turn.rotate({position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1],
                                  position_[2] - freedom_.pivot[2]});
       for (int a = 0; a < 3; ++a) position_[a] = freedom_.pivot[a] + r[a];
-      set_velocity(velocity_);
+      const Vec before = velocity_;
+      set_velocity(velocity_);  // turned with the body: the hinge's centripetal pull
+      count_held(before, {0, 0, 0});
       return;
     }
   }

@@ -71,6 +71,10 @@ class RigidBody {
   // lets them; the velocity of the body's point at p; and the change of that velocity along
   // the unit n that a unit impulse along n at p makes (n . dv, 1 / effective mass).
   void apply_impulse(const Vec& J, const Vec& p);
+  // The impulse the held axes and the hinge gave the centre since the last clear: m dv less
+  // the impulses applied (their reaction, integrated).
+  const Vec& held_impulse() const { return held_impulse_; }
+  void clear_held_impulse() { held_impulse_ = {0, 0, 0}; }
   Vec velocity_at(const Vec& p) const;
   double response(const Vec& p, const Vec& n) const;
   void drift(double dt);
@@ -83,6 +87,9 @@ class RigidBody {
   Vec angular_momentum_{0, 0, 0};
   Freedom freedom_;
   double spin_ = 0, axis_moment_ = 0;  // about_axis: the rate w and the moment I_e
+  Vec held_impulse_{0, 0, 0};
+  // Adds m (v - before) - applied to held_impulse_.
+  void count_held(const Vec& before, const Vec& applied);
 };
 
 }  // namespace pbf

@@ -62,8 +62,8 @@ Vec relative_velocity(const BodyContact& c) {
 }
 
 void push(BodyContact& c, const Vec& J) {
-  c.a->body_in_contact().apply_impulse(J, c.p);
-  if (c.b) c.b->body_in_contact().apply_impulse({-J[0], -J[1], -J[2]}, c.p);
+  c.a->push(J, c.p);
+  if (c.b) c.b->push({-J[0], -J[1], -J[2]}, c.p);
 }
 
 double response(const BodyContact& c, const Vec& d) {

@@ -195,7 +195,25 @@ void SolidDynamics::kick(double dt) {
   body_.kick(F, {fluid[3] + pull_[3], fluid[4] + pull_[4], fluid[5] + pull_[5]}, dt);
 }
 
+void SolidDynamics::push(const Vec& J, const Vec& p) {
+  body_.apply_impulse(J, p);
+  for (int a = 0; a < 3; ++a) contact_impulse_[a] += J[a];
+}
+
+SolidDynamics::Vec SolidDynamics::held_force() const {
+  // The held impulse counts the contacts' as applied: what is left is the constraints'.
+  if (!(dt_ > 0)) return {0, 0, 0};
+  return {held_[0] / dt_, held_[1] / dt_, held_[2] / dt_};
+}
+
+SolidDynamics::Vec SolidDynamics::contact_force() const {
+  if (!(dt_ > 0)) return {0, 0, 0};
+  return {contact_impulse_[0] / dt_, contact_impulse_[1] / dt_, contact_impulse_[2] / dt_};
+}
+
 void SolidDynamics::begin_step(double t, double dt) {
+  contact_impulse_ = {0, 0, 0};
+  dt_ = dt;
   moved_ = released(t);
   if (!moved_) return;
   if (!released_) {
@@ -210,6 +228,9 @@ void SolidDynamics::end_step(const std::array<double, 6>& load, double dt) {
   load_ = load;
   if (!moved_) return;
   kick(0.5 * dt);
+  // The held impulse from the last reading to now (the step's last contacts count in the next).
+  held_ = body_.held_impulse();
+  body_.clear_held_impulse();
   const Vec x = body_.position(), v = body_.velocity(), w = body_.angular_velocity();
   if (!std::isfinite(x[0] + x[1] + x[2] + v[0] + v[1] + v[2] + w[0] + w[1] + w[2]))
     throw Error(fmt::format("body '{}' blew up: its position, velocity or angular velocity is no longer finite (the "

@@ -56,9 +56,12 @@ class SolidDynamics {
     begin_step(t, dt);
     drift(dt);
   }
-  // Whether it moves in this step (released), and its body, for contacts to push.
+  // Whether it moves in this step (released); a contact's impulse J at the world point p.
   bool moving() const { return moved_; }
-  RigidBody& body_in_contact() { return body_; }
+  void push(const Vec& J, const Vec& p);
+  // Over the last step (N): what the held axes and the hinge, and what contacts, exerted on it.
+  Vec held_force() const;
+  Vec contact_force() const;
   // Its second half: the kick of this step's load (force and torque about the origin, as the
   // solid measured it) and gravity over dt / 2. Throws when the body's state is no longer finite.
   void end_step(const std::array<double, 6>& load, double dt);
@@ -86,6 +89,8 @@ class SolidDynamics {
   bool released_ = false, moved_ = false;  // released: set going; moved: in this step
   std::array<double, 6> load_{};           // the fluid's, about the origin
   std::array<double, 6> pull_{};           // the springs', about the centre
+  Vec contact_impulse_{0, 0, 0}, held_{0, 0, 0};  // over the last step
+  double dt_ = 0;                                   // the last step's
 };
 
 }  // namespace pbf

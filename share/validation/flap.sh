@@ -24,7 +24,7 @@ work, commit, version = sys.argv[1:4]
 runs = {}
 for solver in ("pbf", "wcsph"):
     with open(f"{work}/{solver}/thermo.csv") as f:
-        rows = [r for r in csv.DictReader(f)]
+        rows = [r for r in csv.DictReader(l for l in f if not l.startswith("#"))]
     runs[solver] = ([float(r["time"]) for r in rows], [float(r["gate.ry"]) for r in rows])
 model = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
 model = next((l.split(":", 1)[1].strip() for l in model.splitlines() if l.startswith("Model name")), platform.machine())
