@@ -158,7 +158,7 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
                {"velocity", inflow}, {"buffer", 0.02}}}},
             {{"in", "flow", {{"fix", std::string("jet")}}}}};
   }
-  if (name == "PbfFloatingBody")  // a box the block runs into, spinning and rising as it is released
+  if (name == "PbfFloatingBody")  // a box the block runs into, spinning as it is released, on a stretched spring
     return {0.002,
             {kGravity,
              {"pbf", "pbf", {}},
@@ -171,7 +171,15 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
                {"density", 600.0},
                {"velocity", Vec3{0, 0, 0.05}},
                {"angular_velocity", Vec3{0.5, 1, 0}},
-               {"hold", 0.003}}}},
+               {"hold", 0.003}}},
+             {"line",
+              "spring",
+              {{"body", std::string("crate")},
+               {"at", Vec3{0.14, 0.05, 0.07}},
+               {"to", Vec3{0.19, 0.05, 0.19}},
+               {"stiffness", 20.0},
+               {"damping", 0.1},
+               {"length", 0.1}}}},
             {{"state", "body", {{"solid", std::string("crate")}}}}};
   if (name == "WcsphHingedFlap") {  // a flap hinged at the floor, which the block pushes over
     auto fixes = wcsph("summation");
