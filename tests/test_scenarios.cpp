@@ -16,6 +16,17 @@ using pbf::test::read_csv;
 
 namespace {
 
+// Compares every file of run `a`'s output directory with the same-named file of run `b`'s, byte
+// for byte (`what` names the case in failures); returns how many it compared.
+int compare_outputs(const std::filesystem::path& a, const std::filesystem::path& b, const std::string& what) {
+  int compared = 0;
+  for (const auto& e : std::filesystem::directory_iterator(a)) {
+    EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(b / e.path().filename()))
+        << what << " " << e.path().filename();
+    ++compared;
+  }
+  return compared;
+}
 
 }  // namespace
 
@@ -234,12 +245,7 @@ TEST(Fountain, ComesAndGoesSameBitsAtOneAndTwoThreads) {
                           (dir / std::to_string(t)).string());
       ASSERT_EQ(r.code, 0) << r.output;
     }
-    int compared = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir / "1")) {
-      EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(dir / "2" / e.path().filename()))
-          << solver << " " << e.path().filename();
-      ++compared;
-    }
+    const int compared = compare_outputs(dir / "1", dir / "2", solver);
     EXPECT_GE(compared, 5) << solver;  // four frames and the thermo CSV
     const auto thermo = pbf::test::read_csv(dir / "1" / "thermo.csv");
     const auto& n = thermo.at("n");
@@ -265,12 +271,7 @@ TEST(Channel, InflowOverTheBumpLeavesThroughTheOpenEndSameBitsAtOneAndTwoThreads
       ASSERT_EQ(r.code, 0) << r.output;
       EXPECT_EQ(r.output.find("waits for room"), std::string::npos) << r.output;
     }
-    int compared = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir / "1")) {
-      EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(dir / "2" / e.path().filename()))
-          << solver << " " << e.path().filename();
-      ++compared;
-    }
+    const int compared = compare_outputs(dir / "1", dir / "2", solver);
     EXPECT_GE(compared, 5) << solver;  // four frames and the thermo CSV
     const auto thermo = pbf::test::read_csv(dir / "1" / "thermo.csv");
     const double in = thermo.at("in.count").back(), out = thermo.at("out.count").back();
@@ -377,12 +378,7 @@ TEST(Floating, BodiesFallIntoTheTankSameBitsAtOneAndTwoThreads) {
                           (dir / std::to_string(t)).string());
       ASSERT_EQ(r.code, 0) << r.output;
     }
-    int compared = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir / "1")) {
-      EXPECT_EQ(pbf::test::read_file(e.path()), pbf::test::read_file(dir / "2" / e.path().filename()))
-          << solver << " " << e.path().filename();
-      ++compared;
-    }
+    const int compared = compare_outputs(dir / "1", dir / "2", solver);
     EXPECT_GE(compared, 2) << solver;  // the thermo CSV and a picture
     if (solver != "pbf") continue;
     const auto thermo = pbf::test::read_csv(dir / "1" / "thermo.csv");
