@@ -2,8 +2,6 @@
 // their mass properties, the ways they are held, and the coupling with both solvers.
 //  - A sphere's and a cylinder's inertia, placed, turned and stretched, are the closed forms'
 //    (an ellipsoid's m (b^2 + c^2) / 5; a cylinder's m r^2 / 2 about its axis).
-//  - A hinged body is a physical pendulum: at small amplitude its period is
-//    2 pi sqrt(I_p / (m g d)), I_p = I_c + m d^2 about the hinge, d the centre's distance.
 //  - Out of the water a body falls freely: the Verlet kicks of a constant force are exact, so
 //    z(t) = z0 - g t^2 / 2 to round-off; a body held to heave keeps its x, y and its turn.
 //  - Archimedes: a box of relative density 0.5 (or 0.75) floats with its draft d = (rho_b /
@@ -14,47 +12,14 @@
 #include <cmath>
 #include <string>
 
-#include "engine/bodies/rigid_body.hpp"
-#include "engine/core/error.hpp"
-#include "engine/core/simulation.hpp"
-#include "engine/fixes/solid_dynamics.hpp"
-#include "engine/geometry/solid_body.hpp"
-#include "engine/registry/style_registry.hpp"
-#include "engine/sph/lattice.hpp"
+#include "body_scenes.hpp"
 #include "test_util.hpp"
 
 using namespace pbf;
-
-namespace {
-
-std::unique_ptr<Fix> fix(const std::string& id, const std::string& style, const GivenParams& p = {}) {
-  return StyleRegistry::builtin().make_fix(id, style, p);
-}
-
-const SolidDynamics& dynamics_of(const Simulation& sim, const std::string& name) {
-  for (const SolidBody* s : sim.solid_bodies())
-    if (s->name() == name && s->dynamics()) return *s->dynamics();
-  throw Error("no body " + name);
-}
-
-// The body of a solid fix alone (no run): its mass properties as the fix computes them.
-RigidBody body_of(const GivenParams& p) {
-  Simulation sim;
-  sim.set_domain(Domain{{-1, -1, -1}, {1, 1, 1}});
-  sim.add_fix(fix("b", "solid", p));
-  return dynamics_of(sim, "b").body();
-}
-
-// A small block of fluid in a corner (a scene needs particles), spacing 1 cm.
-void corner_block(Simulation& sim) {
-  sim.set_domain(Domain{{0, 0, 0}, {0.4, 0.2, 0.4}});
-  sim.set_kernel_radius(0.02);
-  sim.set_timestep(0.002);
-  const double lo[3] = {0, 0, 0}, hi[3] = {0.04, 0.04, 0.04}, v[3] = {0, 0, 0};
-  add_lattice(sim, lo, hi, 0.01, v);
-}
-
-}  // namespace
+using pbf::test::body_of;
+using pbf::test::corner_block;
+using pbf::test::dynamics_of;
+using pbf::test::fix;
 
 TEST(Body, AStretchedTurnedSphereHasTheEllipsoidsInertia) {
   // Semi-axes 0.1 * {1, 2, 3}, turned 90 degrees about z: the long y axis lies along x.
@@ -89,46 +54,6 @@ TEST(Body, AGivenMassAndInertiaAreTaken) {
   EXPECT_EQ(body.position()[2], 0.02);
   EXPECT_NEAR(body.moments()[0], 0.01, 1e-15);
   EXPECT_NEAR(body.moments()[2], 0.025, 1e-15);
-}
-
-// A box 0.02 x 0.1 x 0.3 m hinged at a point 0.1 m above its centre, swinging about y: at an
-// amplitude of 0.01 rad the period is the small-angle one's within 1e-5 (amplitude^2 / 16), and
-// the energy stays within its O(dt^2) error (1e-5) over 20 swings at 200 steps a swing.
-TEST(Body, AHingedBoxSwingsAsAPhysicalPendulum) {
-  const double g = 9.81, d = 0.1;
-  MassProperties p;
-  p.mass = 1.5;
-  p.center = {0, 0, 0};
-  const double a = 0.02, b = 0.1, c = 0.3;
-  p.inertia = {{{p.mass * (b * b + c * c) / 12, 0, 0}, {0, p.mass * (a * a + c * c) / 12, 0}, {0, 0, p.mass * (a * a + b * b) / 12}}};
-  RigidBody body(p);
-  RigidBody::Freedom hinge;
-  hinge.turn = RigidBody::Freedom::Turn::about_axis;
-  hinge.axis = 1;
-  hinge.hinged = true;
-  hinge.pivot = {0, 0, d};
-  body.restrict(hinge);
-  const double Ip = p.inertia[1][1] + p.mass * d * d, T = 2 * M_PI * std::sqrt(Ip / (p.mass * g * d));
-  body.set_angular_velocity({0, 0.01 * 2 * M_PI / T, 0});  // through the bottom at amplitude 0.01
-  const double dt = T / 200;
-  const RigidBody::Vec weight{0, 0, -p.mass * g};
-  auto energy = [&] { return body.kinetic_energy() + p.mass * g * body.position()[2]; };
-  const double e0 = energy();
-  std::vector<double> crossings;
-  double last = body.angular_velocity()[1];
-  for (int step = 0; step < 20 * 200; ++step) {
-    body.kick(weight, {0, 0, 0}, dt / 2);
-    body.drift(dt);
-    body.kick(weight, {0, 0, 0}, dt / 2);
-    const double w = body.angular_velocity()[1];
-    if ((w < 0) != (last < 0)) crossings.push_back((step + 1) * dt - dt * w / (w - last));
-    last = w;
-    ASSERT_NEAR(body.position()[0] * body.position()[0] + (body.position()[2] - d) * (body.position()[2] - d), d * d, 1e-14);
-    ASSERT_NEAR(body.position()[1], 0, 1e-15);
-  }
-  const double period = 2 * (crossings.back() - crossings.front()) / double(crossings.size() - 1);
-  EXPECT_NEAR(period / T, 1, 1e-4);
-  EXPECT_NEAR((energy() - e0) / (p.mass * g * d * 0.01 * 0.01 / 2), 0, 2e-3);  // of the swing's energy
 }
 
 // Out of the water (the fluid is a small block in a far corner), a box released at t = 0.01 s
@@ -281,25 +206,6 @@ TEST(Body, BodiesComeToRestOnTheFloorAndOnEachOther) {
     EXPECT_NEAR((d.contact_force()[2] + d.fluid_load()[2]) / weight, 1, 5e-3) << name;
     EXPECT_NEAR(d.contact_force()[0] + d.fluid_load()[0], 0, 5e-3 * weight) << name;
   }
-}
-
-// A hinged gate hanging at rest below its hinge: the hinge holds its weight (the held force's
-// z is m g, to round-off); its angle stays 0.
-TEST(Body, AHingeHoldsAHangingGatesWeight) {
-  Simulation sim;
-  corner_block(sim);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
-  sim.add_fix(fix("gate", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
-                                    {"hi", Vec3{0.22, 0.15, 0.3}}, {"density", 700.0},
-                                    {"free_rotation", Vec3{0, 1, 0}}, {"hinge", Vec3{0.21, 0.1, 0.3}}}));
-  sim.run(50);
-  const auto& gate = dynamics_of(sim, "gate");
-  const double weight = gate.body().mass() * 9.81;
-  EXPECT_NEAR(gate.held_force()[2] / weight, 1, 1e-9);
-  EXPECT_NEAR(gate.held_force()[0] / weight, 0, 1e-9);
-  EXPECT_NEAR(gate.rotation()[1], 0, 1e-12);
 }
 
 // A body that must sink sinks: a ball of twice the water's density, released at mid-depth in a

@@ -18,6 +18,20 @@ Vec unit(int axis) {
 
 }  // namespace
 
+bool RigidBody::Freedom::moves_along(int a) const {
+  if (pinned) return false;
+  return sliding ? slide[static_cast<std::size_t>(a)] != 0 : move[static_cast<std::size_t>(a)];
+}
+
+RigidBody::Vec RigidBody::Freedom::project(const Vec& v) const {
+  if (pinned) return {0, 0, 0};
+  if (sliding) {
+    const double along = v[0] * slide[0] + v[1] * slide[1] + v[2] * slide[2];
+    return {along * slide[0], along * slide[1], along * slide[2]};
+  }
+  return {move[0] ? v[0] : 0, move[1] ? v[1] : 0, move[2] ? v[2] : 0};
+}
+
 RigidBody::RigidBody(const MassProperties& p) : mass_(p.mass), position_(p.center) {
   Matrix3 axes;
   principal_axes(p.inertia, moments_, axes);
@@ -46,11 +60,11 @@ RigidBody::Vec RigidBody::angular_velocity() const {
 }
 
 double RigidBody::kinetic_energy() const {
-  double e = 0.5 * mass_ * (velocity_[0] * velocity_[0] + velocity_[1] * velocity_[1] + velocity_[2] * velocity_[2]);
-  if (freedom_.turn == Freedom::Turn::about_axis) {
-    // A hinge's centre moves with the turn: its energy is all in I_e (the pivot's moment).
-    return (freedom_.hinged ? 0 : e) + 0.5 * axis_moment_ * spin_ * spin_;
-  }
+  // A pinned body's centre moves with the turn: its energy is all in the pivot's moments.
+  double e = freedom_.pinned ? 0
+                             : 0.5 * mass_ *
+                                   (velocity_[0] * velocity_[0] + velocity_[1] * velocity_[1] + velocity_[2] * velocity_[2]);
+  if (freedom_.turn == Freedom::Turn::about_axis) return e + 0.5 * axis_moment_ * spin_ * spin_;
   const Vec L = orientation_.conjugate().rotate(angular_momentum_);
   for (int k = 0; k < 3; ++k) e += 0.5 * L[k] * L[k] / moments_[k];
   return e;
@@ -59,26 +73,34 @@ double RigidBody::kinetic_energy() const {
 void RigidBody::restrict(const Freedom& freedom) {
   const Vec w = angular_velocity();
   freedom_ = freedom;
+  const Vec r = from_pivot();
   if (freedom_.turn == Freedom::Turn::about_axis) {
     const Vec e = unit(freedom_.axis), b = orientation_.conjugate().rotate(e);
     axis_moment_ = moments_[0] * b[0] * b[0] + moments_[1] * b[1] * b[1] + moments_[2] * b[2] * b[2];
-    if (freedom_.hinged) {
-      const Vec r{position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1], position_[2] - freedom_.pivot[2]};
+    if (freedom_.pinned) {
       const Vec d = cross(r, e);
       axis_moment_ += mass_ * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      freedom_.move = {false, false, false};
     }
+  } else if (freedom_.turn == Freedom::Turn::free && freedom_.pinned) {
+    // I_p in the body's frame, and its principal axes: the body turns on those from now on.
+    const Vec a = orientation_.conjugate().rotate(r);
+    const double aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    Matrix3 pivot_inertia{};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) pivot_inertia[i][j] = (i == j) * moments_[i] + mass_ * ((i == j) * aa - a[i] * a[j]);
+    Matrix3 axes;
+    principal_axes(pivot_inertia, moments_, axes);
+    const Quaternion to_old = Quaternion::from_matrix(axes);
+    orientation_ = (orientation_ * to_old).normalized();
+    arm_ = to_old.conjugate().rotate(a);
   }
   set_velocity(velocity_);
   set_angular_velocity(w);
 }
 
 void RigidBody::set_velocity(const Vec& v) {
-  for (int a = 0; a < 3; ++a) velocity_[a] = freedom_.move[a] ? v[a] : 0;
-  if (freedom_.hinged) {  // the centre goes round the pivot: w x (x - p)
-    const Vec r{position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1], position_[2] - freedom_.pivot[2]};
-    velocity_ = cross(angular_velocity(), r);
-  }
+  velocity_ = freedom_.project(v);
+  if (freedom_.pinned) velocity_ = cross(angular_velocity(), from_pivot());  // the centre goes round the pivot
 }
 
 void RigidBody::set_angular_velocity(const Vec& omega) {
@@ -89,12 +111,18 @@ void RigidBody::set_angular_velocity(const Vec& omega) {
     case Freedom::Turn::about_axis:
       spin_ = omega[static_cast<std::size_t>(freedom_.axis)];
       angular_momentum_ = {0, 0, 0};
-      if (freedom_.hinged) set_velocity(velocity_);
-      return;
-    case Freedom::Turn::free: break;
+      break;
+    case Freedom::Turn::free: {
+      const Vec w = orientation_.conjugate().rotate(omega);
+      angular_momentum_ = orientation_.rotate({moments_[0] * w[0], moments_[1] * w[1], moments_[2] * w[2]});
+      break;
+    }
   }
-  const Vec w = orientation_.conjugate().rotate(omega);
-  angular_momentum_ = orientation_.rotate({moments_[0] * w[0], moments_[1] * w[1], moments_[2] * w[2]});
+  if (freedom_.pinned) set_velocity(velocity_);
+}
+
+RigidBody::Vec RigidBody::from_pivot() const {
+  return {position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1], position_[2] - freedom_.pivot[2]};
 }
 
 void RigidBody::set_state(const Vec& position, const Vec& velocity, const Quaternion& orientation,
@@ -112,56 +140,32 @@ void RigidBody::count_held(const Vec& before, const Vec& applied) {
 
 void RigidBody::kick(const Vec& force, const Vec& torque, double dt) {
   const Vec before = velocity_;
+  turn_by({torque[0] * dt, torque[1] * dt, torque[2] * dt}, {force[0] * dt, force[1] * dt, force[2] * dt});
+  count_held(before, {force[0] * dt, force[1] * dt, force[2] * dt});
+}
+
+// An angular impulse about the centre and an impulse J through it, as the freedom lets them.
+void RigidBody::turn_by(const Vec& moment, const Vec& J) {
+  Vec about = moment;
+  if (freedom_.pinned) {  // about the pivot: the impulse's moment there too
+    const Vec m = cross(from_pivot(), J);
+    for (int a = 0; a < 3; ++a) about[a] += m[a];
+  }
   switch (freedom_.turn) {
     case Freedom::Turn::free:
-      for (int a = 0; a < 3; ++a) angular_momentum_[a] += torque[a] * dt;
+      for (int a = 0; a < 3; ++a) angular_momentum_[a] += about[a];
       break;
-    case Freedom::Turn::about_axis: {
-      const auto k = static_cast<std::size_t>(freedom_.axis);
-      double t = torque[k];
-      if (freedom_.hinged) {  // the force's moment about the pivot
-        const Vec r{position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1], position_[2] - freedom_.pivot[2]};
-        t += cross(r, force)[k];
-      }
-      spin_ += t / axis_moment_ * dt;
-      break;
-    }
+    case Freedom::Turn::about_axis: spin_ += about[static_cast<std::size_t>(freedom_.axis)] / axis_moment_; break;
     case Freedom::Turn::none: break;
   }
-  if (freedom_.hinged) {
-    set_velocity(velocity_);
-  } else {
-    for (int a = 0; a < 3; ++a)
-      if (freedom_.move[a]) velocity_[a] += force[a] / mass_ * dt;
-  }
-  count_held(before, {force[0] * dt, force[1] * dt, force[2] * dt});
+  const Vec dv = freedom_.project({J[0] / mass_, J[1] / mass_, J[2] / mass_});
+  for (int a = 0; a < 3; ++a) velocity_[a] += dv[a];
+  if (freedom_.pinned) set_velocity(velocity_);
 }
 
 void RigidBody::apply_impulse(const Vec& J, const Vec& p) {
   const Vec before = velocity_;
-  const Vec r{p[0] - position_[0], p[1] - position_[1], p[2] - position_[2]}, moment = cross(r, J);
-  switch (freedom_.turn) {
-    case Freedom::Turn::free:
-      for (int a = 0; a < 3; ++a) angular_momentum_[a] += moment[a];
-      break;
-    case Freedom::Turn::about_axis: {
-      const auto k = static_cast<std::size_t>(freedom_.axis);
-      double m = moment[k];
-      if (freedom_.hinged) {  // about the pivot: the centre's share too
-        const Vec c{position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1], position_[2] - freedom_.pivot[2]};
-        m += cross(c, J)[k];
-      }
-      spin_ += m / axis_moment_;
-      break;
-    }
-    case Freedom::Turn::none: break;
-  }
-  if (freedom_.hinged) {
-    set_velocity(velocity_);
-  } else {
-    for (int a = 0; a < 3; ++a)
-      if (freedom_.move[a]) velocity_[a] += J[a] / mass_;
-  }
+  turn_by(cross({p[0] - position_[0], p[1] - position_[1], p[2] - position_[2]}, J), J);
   count_held(before, J);
 }
 
@@ -182,17 +186,15 @@ void RigidBody::drift(double dt) {
     const Vec e = unit(freedom_.axis);
     const Quaternion turn = Quaternion::about(e, spin_ * dt);
     orientation_ = (turn * orientation_).normalized();
-    if (freedom_.hinged) {  // the centre turns round the pivot with the body
-      const Vec r = turn.rotate({position_[0] - freedom_.pivot[0], position_[1] - freedom_.pivot[1],
-                                 position_[2] - freedom_.pivot[2]});
+    if (freedom_.pinned) {  // the centre turns round the pivot with the body
+      const Vec r = turn.rotate(from_pivot());
       for (int a = 0; a < 3; ++a) position_[a] = freedom_.pivot[a] + r[a];
-      const Vec before = velocity_;
-      set_velocity(velocity_);  // turned with the body: the hinge's centripetal pull
-      count_held(before, {0, 0, 0});
+      carried_round();
       return;
     }
   }
-  for (int a = 0; a < 3; ++a) position_[a] += velocity_[a] * dt;
+  if (!freedom_.pinned)
+    for (int a = 0; a < 3; ++a) position_[a] += velocity_[a] * dt;
   if (freedom_.turn != Freedom::Turn::free) return;
   // R_k(h): L seen from the body, L_k / I_k the rate about axis k; the body turns by it.
   auto turn = [&](int k, double h) {
@@ -204,6 +206,19 @@ void RigidBody::drift(double dt) {
   turn(2, dt);
   turn(1, 0.5 * dt);
   turn(0, 0.5 * dt);
+  if (freedom_.pinned) {  // a ball joint: the centre where the turn put it
+    const Vec r = orientation_.rotate(arm_);
+    for (int a = 0; a < 3; ++a) position_[a] = freedom_.pivot[a] + r[a];
+    carried_round();
+  }
+}
+
+// The velocity of a centre the pivot carried round: w x (x - p) where it is now, the change the
+// pivot's pull (centripetal), counted as held.
+void RigidBody::carried_round() {
+  const Vec before = velocity_;
+  set_velocity(velocity_);
+  count_held(before, {0, 0, 0});
 }
 
 }  // namespace pbf

@@ -116,7 +116,7 @@ void SolidFix::find_symmetry_planes(const Simulation& sim) {
     if (!symmetry_[2 * a] && !symmetry_[2 * a + 1]) continue;
     const bool turns_off = free.turn == RigidBody::Freedom::Turn::free ||
                            (free.turn == RigidBody::Freedom::Turn::about_axis && free.axis != a);
-    if (free.move[a] || turns_off)
+    if (free.moves_along(a) || turns_off)
       throw Error(fmt::format("body '{}' reaches the domain face {} = {:.6g}, its symmetry plane: lock its translation "
                               "along {} (free_translation) and every rotation but about {} (free_rotation), or place "
                               "it clear of the face",

@@ -12,7 +12,9 @@
 // over the step is the drift's (solid.cpp), and the load it measures is its response.
 //
 // Held: axes locked (free_translation, free_rotation by world axis: 0, 1 or 3 rotations), a
-// hinge (one rotation, about a fixed point; every translation locked). Until `hold` the body
+// slider (the centre moves along one direction; no turn unless free_rotation says), a hinge
+// (one rotation about a fixed point) or a ball joint (every rotation about a fixed point); a
+// hinge and a ball joint lock every translation. Until `hold` the body
 // stays where the scene put it (the fluid settles around it), then it starts with `velocity`
 // and `angular_velocity`.
 #include "engine/fixes/solid_dynamics.hpp"
@@ -98,6 +100,14 @@ std::vector<ParamSpec> SolidDynamics::params() {
       ParamSpec{"hinge", ParamType::Vector3, std::nullopt, "m",
                 "a point the body turns about, on its one free rotation's axis (every translation locked)", true}
           .magnitude_at_most(1e6),
+      ParamSpec{"ball_joint", ParamType::Vector3, std::nullopt, "m",
+                "a fixed point the body turns freely about (a ball joint; every translation locked)", true}
+          .magnitude_at_most(1e6),
+      ParamSpec{"slider", ParamType::Vector3, std::nullopt, "",
+                "the one direction a body's centre moves along (a prismatic joint; it turns only as free_rotation "
+                "says, default not at all)",
+                true}
+          .magnitude_at_most(1e6),
   };
 }
 
@@ -148,12 +158,34 @@ SolidDynamics::SolidDynamics(const std::string& id, const Params& p, const Solid
                             "m^2): the largest exceeds the sum of the other two",
                             moments[0], moments[1], moments[2]));
   body_ = RigidBody(props);
-  placed_center_ = body_.position();
-  placed_orientation_ = body_.orientation();
 
+  body_.restrict(freedom_of(p));
+  placed_center_ = body_.position();
+  placed_orientation_ = body_.orientation();  // a ball joint turns the body's frame onto the pivot's axes
+  const Vec3 zero{0, 0, 0}, v = p.has("velocity") ? p.vec3("velocity") : zero,
+             w = p.has("angular_velocity") ? p.vec3("angular_velocity") : zero;
+  release_velocity_ = {v[0], v[1], v[2]};
+  release_angular_velocity_ = {w[0], w[1], w[2]};
+}
+
+RigidBody::Freedom SolidDynamics::freedom_of(const Params& p) {
+  int joints = 0;
+  for (const char* joint : {"hinge", "ball_joint", "slider"}) joints += p.has(joint);
+  if (joints > 1) throw Error("give a body one of 'hinge', 'ball_joint' and 'slider'");
+  if (p.has("free_translation") && joints > 0)
+    throw Error("parameter 'free_translation': a body on a hinge, ball joint or slider moves as its joint lets it: drop "
+                "'free_translation'");
   RigidBody::Freedom freedom;
   freedom.move = axes_of(p, "free_translation");
-  const auto turn = axes_of(p, "free_rotation");
+  if (p.has("slider")) {
+    const Vec3 u = p.vec3("slider");
+    const double length = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (!(length > 0)) throw Error("parameter 'slider': the direction has no length");
+    freedom.sliding = true;
+    freedom.slide = {u[0] / length, u[1] / length, u[2] / length};
+  }
+  const auto turn = p.has("free_rotation") || !p.has("slider") ? axes_of(p, "free_rotation")
+                                                                : std::array<bool, 3>{false, false, false};
   const int turning = turn[0] + turn[1] + turn[2];
   if (turning == 2)
     throw Error("parameter 'free_rotation': free all three rotations, one, or none (two free rotations are no "
@@ -167,14 +199,18 @@ SolidDynamics::SolidDynamics(const std::string& id, const Params& p, const Solid
       throw Error("parameter 'hinge': a hinge turns about one axis: free exactly one rotation (free_rotation, e.g. "
                   "{0, 1, 0})");
     const Vec3 h = p.vec3("hinge");
-    freedom.hinged = true;
+    freedom.pinned = true;
     freedom.pivot = {h[0], h[1], h[2]};
   }
-  body_.restrict(freedom);
-  const Vec3 zero{0, 0, 0}, v = p.has("velocity") ? p.vec3("velocity") : zero,
-             w = p.has("angular_velocity") ? p.vec3("angular_velocity") : zero;
-  release_velocity_ = {v[0], v[1], v[2]};
-  release_angular_velocity_ = {w[0], w[1], w[2]};
+  if (p.has("ball_joint")) {
+    if (turning != 3)
+      throw Error("parameter 'ball_joint': a body turns freely about its ball joint (for one axis, give 'hinge'): drop "
+                  "'free_rotation'");
+    const Vec3 c = p.vec3("ball_joint");
+    freedom.pinned = true;
+    freedom.pivot = {c[0], c[1], c[2]};
+  }
+  return freedom;
 }
 
 RigidTransform SolidDynamics::transform() const {

@@ -77,6 +77,7 @@ class SolidDynamics {
   void restore(ByteReader& r);
 
  private:
+  static RigidBody::Freedom freedom_of(const Params& p);  // the held axes and joints the parameters give
   void kick(double dt);
 
   std::string id_;

@@ -961,7 +961,7 @@ def gen_lua_rules(g):
         scene + pipe + ['@pbf.fix("ball", "solid", {shape = "sphere", center = {0.06, 0.06, 0.06}, radius = 0.02, '
                         "pivot = {0, 0, 0}})", "pbf.run(1)"], "refused", "line", "pivot")
     g.section("Bodies the fluid moves (a solid with a density or a mass): masses, densities and inertias that "
-              "are not positive, finite or a body's; axes held in no rigid way; a hinge without its one axis; body "
+              "are not positive, finite or a body's; axes held in no rigid way; a hinge without its one axis; joints given twice or without a direction; body "
               "parameters on a solid that is no body; bodies placed inside each other or across a wall; a body "
               "thrown faster than a step can follow. Each names the parameter or the bodies.")
     body = ('pbf.fix("crate", "solid", {shape = "box", lo = {0.07, 0.07, 0.07}, hi = {0.09, 0.09, 0.09}, %s})')
@@ -992,6 +992,17 @@ def gen_lua_rules(g):
             ("hinge_nan", "density = 500, free_rotation = {0, 1, 0}, hinge = {0/0, 0, 0}", "refused", "line",
              "'hinge'"),
             ("hinge", "density = 500, free_rotation = {0, 1, 0}, hinge = {0.08, 0.08, 0.09}", "accepted", "line", ""),
+            ("slider_zero", "density = 500, slider = {0, 0, 0}", "refused", "line", "'slider' && no length"),
+            ("slider_nan", "density = 500, slider = {0/0, 1, 0}", "refused", "line", "'slider'"),
+            ("slider_and_translation", "density = 500, slider = {1, 0, 0}, free_translation = {1, 0, 0}", "refused",
+             "line", "'free_translation' && joint"),
+            ("slider", "density = 500, slider = {1, 1, -1}", "accepted", "line", ""),
+            ("ball_joint_one_rotation", "density = 500, ball_joint = {0.08, 0.08, 0.1}, free_rotation = {0, 1, 0}",
+             "refused", "line", "'ball_joint' && 'hinge'"),
+            ("ball_joint_and_hinge", "density = 500, ball_joint = {0.08, 0.08, 0.1}, hinge = {0.08, 0.08, 0.1}",
+             "refused", "line", "one of"),
+            ("ball_joint_inf", "density = 500, ball_joint = {1/0, 0, 0}", "refused", "line", "'ball_joint'"),
+            ("ball_joint", "density = 500, ball_joint = {0.08, 0.08, 0.1}", "accepted", "line", ""),
             ("velocity_nan", "density = 500, velocity = {0/0, 0, 0}", "refused", "line", "'velocity'"),
             ("angular_velocity_huge", "density = 500, angular_velocity = {1e300, 0, 0}", "refused", "line",
              "'angular_velocity'"),
