@@ -7,6 +7,8 @@
 //  - Archimedes: a box of relative density 0.5 (or 0.75) floats with its draft d = (rho_b /
 //    rho) H within 3% (the bound) of the water level the gauge measures, and does not
 //    drift (its mean over the last second within 1 mm of the second before); both solvers.
+//  - Springs: a bob hangs at its stretch m g / k and swings at 2 pi sqrt(m / k); with a damper
+//    its swing decays as exp(-c t / 2m); two bodies tied together keep their momentum.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -290,4 +292,38 @@ TEST(Body, ASpringHoldsABodyAtItsStretchAndPeriod) {
   const auto &a = dynamics_of(pair, "a").body(), &b = dynamics_of(pair, "b").body();
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.velocity()[c] + 2 * b.velocity()[c], 0, 1e-15) << c;
   EXPECT_GT(std::abs(a.velocity()[0] + 0.1), 0.01);  // the spring has acted
+}
+
+// The same bob with a damper of c = 2 N s/m: it oscillates about the stretch with its
+// amplitude decaying as exp(-c t / 2m) (gamma = 0.83 /s); over the first five swings the
+// peaks fall by that within 1% (the damper reads the half-step's velocity: an O(dt) lag).
+TEST(Body, ADampedSpringsSwingDecaysAtCOverTwoM) {
+  const double m = 1.2, k = 300, c = 2, g = 9.81, T = 2 * M_PI * std::sqrt(m / k);
+  Simulation sim;
+  corner_block(sim);
+  sim.set_timestep(T / 200);
+  sim.add_fix(fix("gravity", "gravity"));
+  sim.add_fix(fix("pbf", "pbf"));
+  sim.add_fix(fix("walls", "box"));
+  sim.add_fix(fix("bob", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
+                                   {"hi", Vec3{0.3, 0.15, 0.25}}, {"mass", m}, {"free_translation", Vec3{0, 0, 1}},
+                                   {"free_rotation", Vec3{0, 0, 0}}}));
+  sim.add_fix(fix("line", "spring", {{"body", std::string("bob")}, {"at", Vec3{0.25, 0.1, 0.25}},
+                                     {"to", Vec3{0.25, 0.1, 0.35}}, {"stiffness", k}, {"damping", c}}));
+  const double rest = 0.225 - m * g / k;
+  std::vector<double> peaks, times;
+  double before = 0, last = 0;
+  for (int step = 0; step < 1100; ++step) {
+    sim.run(1);
+    const double z = dynamics_of(sim, "bob").body().position()[2] - rest;
+    if (step > 1 && std::abs(last) > std::abs(before) && std::abs(last) >= std::abs(z)) {
+      peaks.push_back(std::abs(last));
+      times.push_back(sim.time() - sim.timestep());
+    }
+    before = last;
+    last = z;
+  }
+  ASSERT_GE(peaks.size(), 10u);
+  const double gamma = std::log(peaks[0] / peaks[9]) / (times[9] - times[0]);
+  EXPECT_NEAR(gamma / (c / (2 * m)), 1, 0.01);
 }
