@@ -192,7 +192,16 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
                       {"density", 800.0},
                       {"free_rotation", Vec3{0, 1, 0}},
                       {"hinge", Vec3{0.135, 0.05, 0.01}}}});
-    return {0.0002, fixes, {{"state", "body", {{"solid", std::string("flap")}}}}};
+    fixes.push_back({"ball",  // a ball on a ball joint above it, which the water and the flap swing
+                     "solid",
+                     {{"shape", std::string("sphere")},
+                      {"center", Vec3{0.17, 0.045, 0.05}},
+                      {"radius", 0.015},
+                      {"density", 600.0},
+                      {"ball_joint", Vec3{0.172, 0.05, 0.12}}}});
+    return {0.0002,
+            fixes,
+            {{"state", "body", {{"solid", std::string("flap")}}}, {"ball_state", "body", {{"solid", std::string("ball")}}}}};
   }
   ADD_FAILURE() << "no pipeline " << name;
   return {};
