@@ -87,6 +87,10 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   void place(const RigidTransform& T);
   void check_body_speed(const Simulation& sim) const;
   double fastest_point_speed() const;
+  // Its pose at the simulation's time: a motion's then (whether or not its own stage has moved
+  // it yet in this step), a body's or a resting solid's where it is; its surface there.
+  RigidTransform pose_now(const Simulation& sim) const { return motion_ ? pose_at(sim.time()) : now_; }
+  TriangleMesh surface_at(const RigidTransform& pose) const;
 
   // Bodies (solid_contact.cpp): the first body of the pipeline moves them all, contacts between.
   static std::vector<SolidFix*> solids_of(const Simulation& sim);

@@ -3,12 +3,14 @@
 // are resolved on the half-step velocities the drift is about to use, then each drifts.
 //
 // Contact points are the vertices of a body's surface; an obstacle is the domain's walls (a
-// `box` fix's closed faces), a solid at rest (its map's distance), or another body (its map, at
-// its pose). A point at distance phi beyond the contact gap (one particle spacing: room for the
+// `box` fix's closed faces), a solid at rest (its map's distance), a solid a motion moves (its
+// map at its pose now, its point moving at the pose's change over the coming step, u_w), or
+// another body (its map, at its pose). A point at distance phi beyond the contact gap (one particle spacing: room for the
 // layer of fluid both walls keep at half a spacing) along the obstacle's normal n is a contact
 // when phi is within h. Speculative contacts (Catto's "sequential impulses"): the normal impulse
 // lambda >= 0 makes the relative normal velocity
-//   v_n >= -phi / dt              (phi >= 0: the drift may close the gap, not more)
+//   v_n >= -phi / dt              (phi >= 0: the drift may close the gap, not more; v_n relative
+//                                  to the other body's point, or a moved solid's u_w)
 //   v_n >= -beta phi / dt         (phi < 0: push out at beta = 0.2 of the overlap per step)
 // with the impulse's effective mass 1 / K, K = n . dv per unit impulse at the point, summed over
 // the two bodies (a body's locked axes and hinge respected). Coulomb friction limits the
@@ -46,6 +48,7 @@ struct BodyContact {
   SolidDynamics* b;  // the other body, or nullptr for a wall
   Vec p, n;
   double phi, K, mu;
+  Vec wall{0, 0, 0};   // a wall's velocity at p (a solid a motion moves)
   double normal = 0;   // the impulses so far
   Vec tangential{0, 0, 0};
 };
@@ -54,10 +57,8 @@ namespace {
 
 Vec relative_velocity(const BodyContact& c) {
   Vec v = c.a->body().velocity_at(c.p);
-  if (c.b) {
-    const Vec w = c.b->body().velocity_at(c.p);
-    for (int k = 0; k < 3; ++k) v[k] -= w[k];
-  }
+  const Vec w = c.b ? c.b->body().velocity_at(c.p) : c.wall;
+  for (int k = 0; k < 3; ++k) v[k] -= w[k];
   return v;
 }
 
@@ -151,18 +152,18 @@ std::vector<Point> surface_points(const TriangleMesh& mesh, double step) {
 // a solid or another body (points over each surface half a spacing apart, tested against the
 // other's map, both ways). A body's gap keeps it a spacing off them once it runs.
 void SolidFix::check_overlaps(const Simulation& sim, const std::vector<SolidFix*>& solids) {
-  auto inside = [](const SolidFix& solid, const Point& p) {
+  auto inside = [&](const SolidFix& solid, const Point& p) {
     const real q[3] = {real(p[0]), real(p[1]), real(p[2])};
     real d, g[3];
-    const auto where = solid.distance_at(solid.now_, q, d, g);
+    const auto where = solid.distance_at(solid.pose_now(sim), q, d, g);
     return where == SolidMap::Where::wall || (where == SolidMap::Where::near && d < 0);
   };
   for (const SolidFix* body : solids) {
     if (!body->dynamics_) continue;
     const auto points = surface_points(body->surface_, 0.5 * body->spacing_);
     for (const SolidFix* other : solids) {
-      if (other == body || other->motion_) continue;
-      const auto theirs = surface_points(other->surface_, 0.5 * body->spacing_);
+      if (other == body) continue;
+      const auto theirs = surface_points(other->surface_at(other->pose_now(sim)), 0.5 * body->spacing_);
       for (const auto& [from, into, list] : {std::tuple{body, other, &points}, std::tuple{other, body, &theirs}})
         for (const Point& p : *list)
           if (inside(*into, p))
@@ -232,13 +233,19 @@ void SolidFix::gather_contacts(const Simulation& sim, const std::vector<SolidFix
   // (Each body moves at most h in a step, check_body_speed: a box 2 h wider holds them all.)
   auto near = bounds(surface_);
   for (int a = 0; a < 3; ++a) near[0][a] -= gap + 2 * sim.kernel_radius(), near[1][a] += gap + 2 * sim.kernel_radius();
-  std::vector<SolidFix*> others;
+  // A solid a motion moves: its pose now, and where that takes the point at p over the step.
+  struct Other {
+    SolidFix* solid;
+    RigidTransform pose, next;
+  };
+  std::vector<Other> others;
   for (SolidFix* other : solids) {
-    if (other == this || other->motion_) continue;  // (solids a script moves: not yet)
-    const auto box = bounds(other->surface_);
+    if (other == this) continue;
+    const RigidTransform pose = other->pose_now(sim);
+    const auto box = other->motion_ ? bounds(other->surface_at(pose)) : bounds(other->surface_);
     bool apart = false;
     for (int a = 0; a < 3; ++a) apart = apart || box[0][a] > near[1][a] || box[1][a] < near[0][a];
-    if (!apart) others.push_back(other);
+    if (!apart) others.push_back({other, pose, other->motion_ ? other->pose_at(sim.time() + dt) : pose});
   }
   for (const Point& vertex : surface_.vertices) {
     const Vec p{vertex[0], vertex[1], vertex[2]};
@@ -252,15 +259,20 @@ void SolidFix::gather_contacts(const Simulation& sim, const std::vector<SolidFix
       contacts.push_back({&*dynamics_, nullptr, p, n, phi, 0, mu});
     }
     const real q[3] = {real(p[0]), real(p[1]), real(p[2])};
-    for (SolidFix* other : others) {
+    for (const auto& [other, pose, next] : others) {
       real d, g[3];
-      if (other->distance_at(other->now_, q, d, g) != SolidMap::Where::near) continue;
+      if (other->distance_at(pose, q, d, g) != SolidMap::Where::near) continue;
       const double phi = double(d) - gap, len = std::sqrt(double(g[0]) * g[0] + double(g[1]) * g[1] + double(g[2]) * g[2]);
-      const double theirs = other->dynamics_ ? other->fastest_point_speed() * dt : 0;
+      Vec wall{0, 0, 0};
+      if (other->motion_) {
+        const Point there = next.apply(pose.apply_inverse(vertex));
+        for (int a = 0; a < 3; ++a) wall[a] = (there[a] - p[a]) / dt;
+      }
+      const double theirs = other->dynamics_ ? other->fastest_point_speed() * dt : std::sqrt(dot(wall, wall)) * dt;
       if (phi >= 2 * (own + theirs) + slack || len == 0) continue;
       SolidDynamics* b = other->dynamics_ && other->dynamics_->moving() ? &*other->dynamics_ : nullptr;
       const double pair_mu = other->dynamics_ ? std::sqrt(mu * other->dynamics_->contact_friction()) : mu;
-      contacts.push_back({&*dynamics_, b, p, {g[0] / len, g[1] / len, g[2] / len}, phi, 0, pair_mu});
+      contacts.push_back({&*dynamics_, b, p, {g[0] / len, g[1] / len, g[2] / len}, phi, 0, pair_mu, wall});
     }
   }
 }

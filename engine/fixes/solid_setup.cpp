@@ -231,6 +231,13 @@ void SolidFix::place(const RigidTransform& next) {
   ++surface_version_;
 }
 
+TriangleMesh SolidFix::surface_at(const RigidTransform& pose) const {
+  if (pose == now_) return surface_;
+  TriangleMesh moved = shape_.surface();
+  for (auto& v : moved.vertices) v = pose.apply(v);
+  return moved;
+}
+
 // The map's distance into the fluid, negated; deep in the wall and far in the fluid the map
 // keeps only the side.
 std::optional<double> SolidFix::depth_in_wall(const std::array<double, 3>& point) const {
