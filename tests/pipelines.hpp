@@ -191,7 +191,8 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
                       {"hi", Vec3{0.14, 0.1, 0.09}},
                       {"density", 800.0},
                       {"free_rotation", Vec3{0, 1, 0}},
-                      {"hinge", Vec3{0.135, 0.05, 0.01}}}});
+                      {"hinge", Vec3{0.135, 0.05, 0.01}},
+                      {"angular_velocity", Vec3{0, 2, 0}}}});  // turning from the start
     fixes.push_back({"ball",  // a ball on a ball joint above it, which the water and the flap swing
                      "solid",
                      {{"shape", std::string("sphere")},
