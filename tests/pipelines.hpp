@@ -181,17 +181,17 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
                {"damping", 0.1},
                {"length", 0.1}}}},
             {{"state", "body", {{"solid", std::string("crate")}}}}};
-  if (name == "WcsphHingedFlap") {  // a flap hinged at the floor, which the block pushes over
+  if (name == "WcsphHingedFlap") {  // a flap hinged above the floor (clear of it: its contact), turning
     auto fixes = wcsph("summation");
     fixes.push_back(kWalls);
     fixes.push_back({"flap",
                      "solid",
                      {{"shape", std::string("box")},
-                      {"lo", Vec3{0.13, 0, 0.01}},
-                      {"hi", Vec3{0.14, 0.1, 0.09}},
+                      {"lo", Vec3{0.13, 0, 0.025}},
+                      {"hi", Vec3{0.14, 0.1, 0.1}},
                       {"density", 800.0},
                       {"free_rotation", Vec3{0, 1, 0}},
-                      {"hinge", Vec3{0.135, 0.05, 0.01}},
+                      {"hinge", Vec3{0.135, 0.05, 0.025}},
                       {"angular_velocity", Vec3{0, 2, 0}}}});  // turning from the start
     fixes.push_back({"ball",  // a ball on a ball joint above it, which the water and the flap swing
                      "solid",
