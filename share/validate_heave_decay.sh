@@ -2,11 +2,11 @@
 # Floating bodies (issue 33) against the heave decay of a floating sphere, Kramer et al. (2021):
 # share/validation/heave_decay.lua (a quarter model) for H0 = 0.3 D, 0.1 D and 0.5 D with PBF,
 # PBF variants for 0.3 D (XSPH off, 10 iterations, half the step, two-sided constraint, a finer
-# spacing) and WCSPH for 0.3 D; share/validation/plot_heave_decay.py compares the first trough
-# and crest with the measured mean. Writes docs/validation/heave_decay.md and heave_decay.png,
-# with the date and machine.
+# spacing) and WCSPH for all three (0.3 D at a finer spacing too);
+# share/validation/plot_heave_decay.py compares the first trough and crest with the measured
+# mean. Writes docs/validation/heave_decay.md and heave_decay.png, with the date and machine.
 #
-#   share/validate_heave_decay.sh [BINARY]    (default build/pbfengine; about 35 minutes on 1 thread)
+#   share/validate_heave_decay.sh [BINARY]    (default build/pbfengine; about 80 minutes on 1 thread)
 #
 # One simulation at a time; OMP_NUM_THREADS as the caller sets it (the report says which).
 # The report's "Assessment" section is written by hand after a run: a new run rewrites the file
@@ -48,6 +48,9 @@ run pbf_03_it10 "PBF, H0 = 0.3 D, 10 iterations" h0=0.3 iterations=10
 run pbf_03_dt2 "PBF, H0 = 0.3 D, half the step" h0=0.3 dt=0.0017481
 run pbf_03_twosided "PBF, H0 = 0.3 D, two-sided constraint" h0=0.3 one_sided=false
 run pbf_03_s010 "PBF, H0 = 0.3 D, spacing 0.01 m" h0=0.3 spacing=0.01
+run wcsph_01 "WCSPH, H0 = 0.1 D, spacing 0.025 m" h0=0.1 solver=wcsph
+run wcsph_05 "WCSPH, H0 = 0.5 D, spacing 0.025 m" h0=0.5 solver=wcsph
+run wcsph_03_s020 "WCSPH, H0 = 0.3 D, spacing 0.02 m" h0=0.3 solver=wcsph spacing=0.02
 
 "$py" share/validation/plot_heave_decay.py --png "$out/heave_decay.png" --table "$work/tables.md" "${runs[@]}"
 
