@@ -1,0 +1,10 @@
+-- a body with density = 500, ball_joint = {1/0, 0, 0}: refused
+pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
+pbf.kernel_radius(0.02)
+pbf.timestep(0.001)
+pbf.lattice{lo = {0.02, 0.02, 0.02}, hi = {0.06, 0.06, 0.06}, spacing = 0.01}
+pbf.fix("gravity", "gravity", {})
+pbf.fix("pbf", "pbf", {})
+pbf.fix("walls", "box", {})
+pbf.fix("crate", "solid", {shape = "box", lo = {0.07, 0.07, 0.07}, hi = {0.09, 0.09, 0.09}, density = 500, ball_joint = {1/0, 0, 0}})
+pbf.run(2)
