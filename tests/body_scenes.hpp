@@ -42,4 +42,12 @@ inline void corner_block(Simulation& sim) {
   add_lattice(sim, lo, hi, 0.01, v);
 }
 
+// The corner block under gravity, with PBF and the box's walls: a scene about its bodies.
+inline void corner_scene(Simulation& sim) {
+  corner_block(sim);
+  sim.add_fix(fix("gravity", "gravity"));
+  sim.add_fix(fix("pbf", "pbf"));
+  sim.add_fix(fix("walls", "box"));
+}
+
 }  // namespace pbf::test

@@ -24,6 +24,7 @@
 using namespace pbf;
 using pbf::test::body_of;
 using pbf::test::corner_block;
+using pbf::test::corner_scene;
 using pbf::test::dynamics_of;
 using pbf::test::fix;
 
@@ -67,10 +68,7 @@ TEST(Body, AGivenMassAndInertiaAreTaken) {
 // heave, given a sideways velocity and a spin, keeps its x, y and turn.
 TEST(Body, OutOfTheWaterABodyFallsFreely) {
   Simulation sim;
-  corner_block(sim);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
+  corner_scene(sim);
   sim.add_fix(fix("free", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.3}},
                                     {"hi", Vec3{0.3, 0.15, 0.35}}, {"density", 700.0}, {"hold", 0.01}}));
   sim.add_fix(fix("heave", "solid", {{"shape", std::string("sphere")}, {"center", Vec3{0.1, 0.1, 0.3}},
@@ -219,10 +217,7 @@ TEST(Body, AHalfDenseSphereFloatsWithItsCentreAtTheLevel) {
 // contact, not left in the velocity).
 TEST(Body, BodiesComeToRestOnTheFloorAndOnEachOther) {
   Simulation sim;
-  corner_block(sim);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
+  corner_scene(sim);
   sim.add_fix(fix("plank", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.15, 0.05, 0.05}},
                                      {"hi", Vec3{0.35, 0.15, 0.08}}, {"density", 500.0}}));
   sim.add_fix(fix("block", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.07, 0.2}},
@@ -279,6 +274,23 @@ TEST(Body, AHeavyBallSinksToTheFloorAndRests) {
   }
 }
 
+namespace {
+
+// A bob of mass m (a box 10 x 10 x 5 cm, its top's centre at z = 0.25 m) held to heave, hung
+// from a spring of stiffness k and damping c whose top is 0.1 m above it (its rest length), at
+// 200 steps a period of 2 pi sqrt(m / k).
+void hang_bob(Simulation& sim, double m, double k, double c) {
+  corner_scene(sim);
+  sim.set_timestep(2 * M_PI * std::sqrt(m / k) / 200);
+  sim.add_fix(fix("bob", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
+                                   {"hi", Vec3{0.3, 0.15, 0.25}}, {"mass", m}, {"free_translation", Vec3{0, 0, 1}},
+                                   {"free_rotation", Vec3{0, 0, 0}}}));
+  sim.add_fix(fix("line", "spring", {{"body", std::string("bob")}, {"at", Vec3{0.25, 0.1, 0.25}},
+                                     {"to", Vec3{0.25, 0.1, 0.35}}, {"stiffness", k}, {"damping", c}}));
+}
+
+}  // namespace
+
 // A spring: a box of 1.2 kg hung in air from a fixed point on a spring of 300 N/m, damping 0,
 // held to heave, released at the spring's rest length, oscillates about the stretch m g / k at
 // the period 2 pi sqrt(m / k) (within 1e-3: the Verlet's phase error (w dt)^2 / 24 at 200
@@ -287,16 +299,7 @@ TEST(Body, AHeavyBallSinksToTheFloorAndRests) {
 TEST(Body, ASpringHoldsABodyAtItsStretchAndPeriod) {
   const double m = 1.2, k = 300, g = 9.81, T = 2 * M_PI * std::sqrt(m / k);
   Simulation sim;
-  corner_block(sim);
-  sim.set_timestep(T / 200);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
-  sim.add_fix(fix("bob", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
-                                   {"hi", Vec3{0.3, 0.15, 0.25}}, {"mass", m}, {"free_translation", Vec3{0, 0, 1}},
-                                   {"free_rotation", Vec3{0, 0, 0}}}));
-  sim.add_fix(fix("line", "spring", {{"body", std::string("bob")}, {"at", Vec3{0.25, 0.1, 0.25}},
-                                     {"to", Vec3{0.25, 0.1, 0.35}}, {"stiffness", k}}));
+  hang_bob(sim, m, k, 0);
   sim.add_compute(StyleRegistry::builtin().make_compute("s", "spring_tension", {{"fix", std::string("line")}}));
   std::vector<double> crossings, values;
   const double rest = 0.225 - m * g / k;  // the centre's equilibrium
@@ -337,18 +340,9 @@ TEST(Body, ASpringHoldsABodyAtItsStretchAndPeriod) {
 // amplitude decaying as exp(-c t / 2m) (gamma = 0.83 /s); over the first five swings the
 // peaks fall by that within 1% (the damper reads the half-step's velocity: an O(dt) lag).
 TEST(Body, ADampedSpringsSwingDecaysAtCOverTwoM) {
-  const double m = 1.2, k = 300, c = 2, g = 9.81, T = 2 * M_PI * std::sqrt(m / k);
+  const double m = 1.2, k = 300, c = 2, g = 9.81;
   Simulation sim;
-  corner_block(sim);
-  sim.set_timestep(T / 200);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
-  sim.add_fix(fix("bob", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
-                                   {"hi", Vec3{0.3, 0.15, 0.25}}, {"mass", m}, {"free_translation", Vec3{0, 0, 1}},
-                                   {"free_rotation", Vec3{0, 0, 0}}}));
-  sim.add_fix(fix("line", "spring", {{"body", std::string("bob")}, {"at", Vec3{0.25, 0.1, 0.25}},
-                                     {"to", Vec3{0.25, 0.1, 0.35}}, {"stiffness", k}, {"damping", c}}));
+  hang_bob(sim, m, k, c);
   const double rest = 0.225 - m * g / k;
   std::vector<double> peaks, times;
   double before = 0, last = 0;
@@ -372,10 +366,7 @@ TEST(Body, ADampedSpringsSwingDecaysAtCOverTwoM) {
 // a crate in the path of a plate a motion pushes along x at 0.2 m/s is pushed ahead of it.
 TEST(Body, ASolidAMotionMovesCarriesAndPushesBodies) {
   Simulation sim;
-  corner_block(sim);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
+  corner_scene(sim);
   sim.add_fix(fix("crate", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.07, 0.13}},
                                      {"hi", Vec3{0.3, 0.13, 0.17}}, {"density", 700.0}}));
   using Key = Keyframes::Key;

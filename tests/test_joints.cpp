@@ -19,7 +19,7 @@
 #include "test_util.hpp"
 
 using namespace pbf;
-using pbf::test::corner_block;
+using pbf::test::corner_scene;
 using pbf::test::dynamics_of;
 using pbf::test::fix;
 
@@ -136,10 +136,7 @@ TEST(Joint, ABallJointedBodyKeepsItsArmAndItsVerticalMomentum) {
 // z is m g, to round-off); its angle stays 0.
 TEST(Joint, AHingeHoldsAHangingGatesWeight) {
   Simulation sim;
-  corner_block(sim);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
+  corner_scene(sim);
   sim.add_fix(fix("gate", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.2, 0.05, 0.2}},
                                     {"hi", Vec3{0.22, 0.15, 0.3}}, {"density", 700.0},
                                     {"free_rotation", Vec3{0, 1, 0}}, {"hinge", Vec3{0.21, 0.1, 0.3}}}));
@@ -155,10 +152,7 @@ TEST(Joint, AHingeHoldsAHangingGatesWeight) {
 // A ball hanging 0.05 m below its ball joint, at rest: the joint holds its weight.
 TEST(Joint, ABallJointHoldsAHangingBallsWeight) {
   Simulation sim;
-  corner_block(sim);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
+  corner_scene(sim);
   sim.add_fix(fix("ball", "solid", {{"shape", std::string("sphere")}, {"center", Vec3{0.25, 0.1, 0.25}},
                                     {"radius", 0.03}, {"density", 700.0}, {"ball_joint", Vec3{0.25, 0.1, 0.3}}}));
   sim.run(50);
@@ -173,10 +167,7 @@ TEST(Joint, ABallJointHoldsAHangingBallsWeight) {
 // slider holds it with m g / sqrt(2) across the slope, (m g / 2)(1, 0, 1).
 TEST(Joint, ABlockOnASlopingSliderSlidesAtGOverRootTwo) {
   Simulation sim;
-  corner_block(sim);
-  sim.add_fix(fix("gravity", "gravity"));
-  sim.add_fix(fix("pbf", "pbf"));
-  sim.add_fix(fix("walls", "box"));
+  corner_scene(sim);
   sim.add_fix(fix("block", "solid", {{"shape", std::string("box")}, {"lo", Vec3{0.1, 0.05, 0.3}},
                                      {"hi", Vec3{0.15, 0.15, 0.35}}, {"density", 700.0}, {"hold", 0.01},
                                      {"slider", Vec3{2, 0, -2}}}));
