@@ -6,6 +6,9 @@
 -- ball of stone (2,500 kg/m^3, 3 cm radius), which sinks and rests on the floor. Each is a
 -- `solid` with a density: the fluid moves it and it moves the fluid (docs/user-guide.md#bodies).
 -- The water settles in about 3 s; the bodies keep rocking on its waves a little longer.
+-- With -v joints=true two more hang on joints: a buoy on a slider (a guide tilted 1 in 5 from
+-- the vertical) that slides down into the water and floats on it, and a heavy ball on a ball
+-- joint 0.11 m from it, which swings down through the surface and back.
 --
 --   pbfengine run scenarios/floating.lua [-v particles=30000] [-v t_end=4] [-v out=out]
 --   pbfengine run scenarios/floating.lua -v images=0.02        (pictures, out/image_*.png)
@@ -13,8 +16,9 @@
 --
 -- Variables: particles (about how many, default 30000), t_end (simulated seconds, default 4),
 -- out (output directory, default "out"; "" for none), solver ("pbf", the default, or
--- "wcsph"); images, movie and vtk as in every scenario (share/lua/outputs.lua). Writes
--- OUT/thermo.csv: each body's height z (m) and its turn about x and y (degrees).
+-- "wcsph"), joints (default false); images, movie and vtk as in every scenario
+-- (share/lua/outputs.lua). Writes OUT/thermo.csv: each body's height z (m) and its turn about
+-- x and y (degrees).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local N = var.particles or 30000
@@ -55,10 +59,18 @@ pbf.fix("cube", "solid", {shape = "box", lo = {-0.03, -0.03, -0.03}, hi = {0.03,
 pbf.fix("ball", "solid", {shape = "sphere", center = {0.45, 0.1, 0.3}, radius = 0.045, density = 600, hold = hold,
                           velocity = {-0.3, 0, 0}})
 pbf.fix("stone", "solid", {shape = "sphere", center = {0.2, 0.3, 0.3}, radius = 0.03, density = 2500, hold = hold})
+local bodies = {"plank", "cube", "ball", "stone"}
+if require("flag")(var.joints, false, "joints") then
+  pbf.fix("buoy", "solid", {shape = "sphere", center = {0.08, 0.3, 0.28}, radius = 0.035, density = 400, hold = hold,
+                            slider = {0.2, 0, -1}})
+  pbf.fix("lamp", "solid", {shape = "sphere", center = {0.5, 0.34, 0.3}, radius = 0.03, density = 1500, hold = hold,
+                            ball_joint = {0.39, 0.34, 0.3}})
+  bodies[#bodies + 1], bodies[#bodies + 2] = "buoy", "lamp"
+end
 
 require("outputs").add(out, {color = "speed", min = 0, max = 1, direction = {0.6, 1.6, -1.2}})
 local columns = {"step", "time"}
-for _, body in ipairs{"plank", "cube", "ball", "stone"} do
+for _, body in ipairs(bodies) do
   pbf.compute(body, "body", {solid = body})
   for _, c in ipairs{"z", "rx", "ry"} do columns[#columns + 1] = body .. "." .. c end
 end

@@ -184,6 +184,23 @@ TEST(Joint, ABlockOnASlopingSliderSlidesAtGOverRootTwo) {
   EXPECT_NEAR(block.held_force()[2] / mg, 0.5, 1e-9);
 }
 
+// A ball on a ball joint, its arm along x, placed 5 mm from the wall x = 0.4 m (inside its
+// contact gap of a spacing): the wall's contact at the point on the arm's line is one the body
+// cannot answer along x (the joint holds that point's radial motion): it is the joint's to
+// hold, and the ball stays put, pressed to the wall, rather than being thrown by the contact's
+// 1 / K.
+TEST(Joint, AContactAlongAJointsArmIsTheJointsToHold) {
+  Simulation sim;
+  corner_scene(sim);
+  sim.add_fix(fix("ball", "solid", {{"shape", std::string("sphere")}, {"center", Vec3{0.365, 0.1, 0.3}},
+                                    {"radius", 0.03}, {"density", 1500.0}, {"ball_joint", Vec3{0.255, 0.1, 0.3}}}));
+  sim.run(20);
+  const auto& ball = dynamics_of(sim, "ball").body();
+  const Vec w = ball.angular_velocity();
+  EXPECT_LT(std::hypot(w[0], w[1], w[2]), 1.0);  // a free swing would reach 3 rad/s
+  EXPECT_NEAR(std::hypot(ball.position()[0] - 0.255, ball.position()[2] - 0.3), 0.11, 1e-9);
+}
+
 TEST(Joint, BadJointsAreRefusedByName) {
   const GivenParams box = {{"shape", std::string("box")}, {"lo", Vec3{0, 0, 0}}, {"hi", Vec3{0.1, 0.1, 0.1}},
                            {"density", 500.0}};

@@ -363,17 +363,20 @@ TEST(StandingWave, KeepsLinearTheorysPeriodWithAWideEnoughKernel) {
   EXPECT_NEAR(period / theory, 1.0, 0.02) << "period " << period << " s, linear theory " << theory << " s";
 }
 
-// Floating bodies (scenarios/floating.lua) with either solver: the same bytes (the bodies'
-// poses in thermo.csv, and a picture) at 1 and 2 threads; in the PBF run, which reaches the
-// bodies' landing (released at 0.3 s from up to 0.15 m above the water: in it by 0.5 s), the
-// stone lies on the floor a spacing up, and the wooden plank floats, its centre within a
-// spacing of the water's level (0.2 m, less the PBF column's compression of a few mm).
+// Floating bodies (scenarios/floating.lua, with its two bodies on joints) with either solver:
+// the same bytes (the bodies' poses in thermo.csv, and a picture) at 1 and 2 threads; in the
+// PBF run, which reaches the bodies' landing (released at 0.3 s from up to 0.15 m above the
+// water: in it by 0.5 s), the stone lies on the floor a spacing up, the wooden plank and the
+// buoy on its slider float, their centres within a spacing of the water's level (0.2 m, less
+// the PBF column's compression of a few mm), and the ball on its joint hangs no lower than its
+// arm of 0.11 m reaches.
 TEST(Floating, BodiesFallIntoTheTankSameBitsAtOneAndTwoThreads) {
   for (const std::string solver : {"pbf", "wcsph"}) {
     const auto dir = pbf::test::temp_dir("floating-" + solver);
     const std::string t_end = solver == "pbf" ? "1.2" : "0.35";
     for (int t : {1, 2}) {
-      auto r = run_engine("run " + scenario("floating.lua") + " -v solver=" + solver + " -v particles=4000 -v t_end=" +
+      auto r = run_engine("run " + scenario("floating.lua") + " -v joints=true -v solver=" + solver +
+                          " -v particles=4000 -v t_end=" +
                           t_end + " -v images=0.3 --threads " + std::to_string(t) + " -v out=" +
                           (dir / std::to_string(t)).string());
       ASSERT_EQ(r.code, 0) << r.output;
@@ -385,5 +388,7 @@ TEST(Floating, BodiesFallIntoTheTankSameBitsAtOneAndTwoThreads) {
     const double spacing = 0.4 / std::floor(0.4 / std::cbrt(0.6 * 0.4 * 0.2 / 4000) + 0.5);
     EXPECT_NEAR(thermo.at("stone.z").back(), 0.03 + spacing, 0.05 * spacing);
     EXPECT_NEAR(thermo.at("plank.z").back(), 0.2, spacing);
+    EXPECT_NEAR(thermo.at("buoy.z").back(), 0.2, spacing);
+    for (double z : thermo.at("lamp.z")) EXPECT_GE(z, 0.3 - 0.11 - 1e-9);
   }
 }

@@ -213,7 +213,12 @@ void SolidFix::resolve_contacts(const Simulation& sim, const std::vector<SolidFi
   for (SolidFix* s : solids)
     if (s->dynamics_ && s->dynamics_->moving()) s->gather_contacts(sim, solids, contacts);
   for (BodyContact& c : contacts) c.K = response(c, c.n);
-  std::erase_if(contacts, [](const BodyContact& c) { return !(c.K > 0); });
+  // A contact its bodies cannot answer (a point a joint holds still along n: K is zero but for
+  // round-off, and 1 / K would throw the body) is the joint's to hold, not the contact's.
+  std::erase_if(contacts, [](const BodyContact& c) {
+    const double free = 1 / c.a->body().mass() + (c.b ? 1 / c.b->body().mass() : 0);
+    return !(c.K > 1e-9 * free);
+  });
   for (int k = 0; k < kSweeps && !contacts.empty(); ++k) sweep(contacts, sim.timestep());
 }
 

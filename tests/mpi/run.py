@@ -262,10 +262,10 @@ def identical_solid(args, work):
 
 def identical_floating(args, work):
     scenario = os.path.join(HERE, "..", "..", "scenarios", "floating.lua")
-    variables = {"particles": 4000, "t_end": 0.6, "images": 0.3}
+    variables = {"particles": 4000, "t_end": 0.6, "images": 0.3, "joints": "true"}
     same_outputs(args, work, scenario, variables, ["thermo.csv", "image_00002.png"], least_frames=0)
-    print("floating bodies (four, falling into the tank and meeting the floor): their poses in thermo.csv and the "
-          "pictures identical at 1, 2 and 3 ranks")
+    print("floating bodies (four, falling into the tank and meeting the floor, and two on joints): their poses in "
+          "thermo.csv and the pictures identical at 1, 2 and 3 ranks")
 
 
 def sources(args, work):
