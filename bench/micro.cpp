@@ -157,7 +157,7 @@ void step(benchmark::State& state) {
   }
   const double nb = state.iterations() ? neighbor_sum / static_cast<double>(state.iterations()) : 0;
   // A step: its constraint iterations, the summed density, vorticity, xsph and the lists.
-  const double iterations = scene->sim().solver_report().iterations;
+  const double iterations = scene->sim().solver_report().constraints.iterations;
   const double per_pair = iterations * kPbfIterationPerPair + kDensityPerPair + kVorticityPerPair +
                           kXsphPerPair + kListsPerNeighbor;
   const double per_particle = iterations * kPbfIterationPerParticle + kDensityPerParticle +

@@ -22,7 +22,9 @@
 -- max_dt). support: the kernel radius h in spacings (default 2). periodic: axes along which
 -- the tank repeats ("y": an endless tank's quasi-2D flow). solver: "pbf" (default) or
 -- "wcsph", weakly compressible SPH (share/lua/solvers.lua; 8000 particles by default, as its steps
--- are set by the sound speed: alpha, eos, sound_speed, courant and fixed_dt pass to it; scenarios/dambreak_wcsph.lua runs it).
+-- are set by the sound speed: alpha, eos, sound_speed, courant and fixed_dt pass to it; scenarios/dambreak_wcsph.lua runs it),
+-- or "dfsph", divergence-free SPH (its steps by the CFL bound, dt the largest: error,
+-- divergence_error, max_iterations, nu, courant and fixed_dt pass to it).
 -- flap: a gate hinged along its top edge across the tank, 3a from the back wall (a body the
 -- surge swings open; docs/user-guide.md#bodies): its density in kg/m^3 (-v flap=800), a tall,
 -- a/10 thick, its lower edge a/4 above the floor; thermo's `flap` column is its angle (degrees).
@@ -36,7 +38,8 @@
 package.path = (debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./") .. "../share/lua/?.lua;" .. package.path
 local flag, axes = require("flag"), require("axes")
 local solver = var.solver or "pbf"
-assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
+assert(solver == "pbf" or solver == "wcsph" or solver == "dfsph",
+       "solver must be pbf, wcsph or dfsph, got " .. tostring(solver))
 local N = var.particles or (solver == "wcsph" and 8000 or 30000)
 local t_end = var.t_end or 1.0
 local a = var.a or 0.1
@@ -77,6 +80,10 @@ pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, eos = var.eos, density = var.density, fixed_dt = var.fixed_dt,
                            sound_speed = var.sound_speed, courant = var.courant}
+elseif solver == "dfsph" then
+  require("solvers").dfsph{error = var.error, divergence_error = var.divergence_error, max_iterations = var.max_iterations,
+                           nu = var.nu, courant = var.courant, fixed_dt = var.fixed_dt,
+                           align = out ~= "" and (var.interval or 0.02) or nil}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, relaxation = var.relaxation, one_sided = flag(var.one_sided, true, "one_sided"),
                          scorr_k = var.scorr_k, error = var.error, max_iterations = var.max_iterations})
@@ -112,5 +119,5 @@ pbf.thermo{every = math.max(1, math.floor((var.thermo or 0.01) / dt_typical)),
            columns = columns}
 
 print(string.format("dam break (%s): %d particles, a = %g m, h %.4g m, dt %s%.4g s, to t = %g s", solver,
-                    pbf.count(), a, pbf.kernel_radius(), solver == "wcsph" and "<= " or "", dt, t_end))
+                    pbf.count(), a, pbf.kernel_radius(), solver ~= "pbf" and "<= " or "", dt, t_end))
 pbf.run_until(t_end)

@@ -11,7 +11,9 @@
 -- epsilon, one_sided, wall_density, contact (the walls' contact_distance) and scorr_k (default: the styles' defaults, see
 -- pbfengine help pbf), xsph (XSPH c, default 0.01), dt (default 0.4 h / sqrt(2 g H)),
 -- csv (thermo CSV file, default none), out (frame directory, default none), solver ("pbf",
--- the default, or "wcsph": weakly compressible SPH, share/lua/solvers.lua, with alpha),
+-- the default; "wcsph": weakly compressible SPH, with alpha; "dfsph": divergence-free SPH, with
+-- error (default 1e-5), divergence_error (1e-4), max_iterations (1000) and nu; both
+-- share/lua/solvers.lua),
 -- periodic (axes along which the domain repeats, e.g. "xy": a layer of water without side
 -- walls, whose lattice tiles the period).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
@@ -34,8 +36,12 @@ pbf.timestep(dt)
 pbf.lattice{lo = {0, 0, 0}, hi = {W, W, H}, spacing = s}
 
 pbf.fix("gravity", "gravity", {})
-if (var.solver or "pbf") == "wcsph" then
+local solver = var.solver or "pbf"
+if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, density = var.density, fixed_dt = var.fixed_dt}
+elseif solver == "dfsph" then  -- tolerances tighter than the style's: a still column (docs/validation/dfsph.md)
+  require("solvers").dfsph{error = var.error or 1e-5, divergence_error = var.divergence_error or 1e-4,
+                           max_iterations = var.max_iterations or 1000, nu = var.nu, fixed_dt = var.fixed_dt}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations, error = var.error, max_iterations = var.max_iterations,
                          epsilon = var.epsilon, relaxation = var.relaxation, one_sided = flag(var.one_sided, true, "one_sided"),
@@ -62,11 +68,15 @@ pbf.compute("v", "speed")
 pbf.compute("top", "front", {axis = "z", percentile = 99})
 pbf.compute("box", "extent")
 -- WCSPH steps are set by the sound speed c0 = 10 sqrt(2 g H) (fix cfl), not by dt above
-local dt_typical = (var.solver or "pbf") == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * 9.81 * H)) or dt
+local dt_typical = solver == "wcsph" and 0.15 * h / (10 * math.sqrt(2 * 9.81 * H)) or dt
 local columns = {"step", "time", "err.avg", "err.max", "err.compression", "v.avg", "v.max", "top", "box.zmin"}
-if (var.solver or "pbf") == "pbf" then  -- the constraint iterations per step, averaged over each line's steps
+if solver ~= "wcsph" then  -- the constraint iterations per step, averaged over each line's steps
   pbf.compute("it", "iterations")
   columns[#columns + 1] = "it.avg"
+end
+if solver == "dfsph" then  -- and the divergence-free solve's
+  pbf.compute("div", "iterations", {loop = "divergence"})
+  columns[#columns + 1] = "div.avg"
 end
 pbf.thermo{every = math.max(1, math.floor(0.1 / dt_typical)), csv = var.csv, columns = columns}
 

@@ -9,9 +9,9 @@
 -- walls ("box", the default: the analytic box fix; "mesh": the same box as a container read
 -- from scenarios/geometry/unit_box.obj; "solid": the same as a box primitive),
 -- iterations (constraint iterations per step, default 4), solver ("pbf", the default, or
--- "wcsph": weakly compressible SPH, share/lua/solvers.lua; the file's time step is then an
--- upper bound, the CFL control takes smaller steps as needed, and ends steps on the output
--- interval so that frames stay on it).
+-- "wcsph": weakly compressible SPH, or "dfsph": divergence-free SPH, share/lua/solvers.lua;
+-- the file's time step is then an upper bound, the CFL control takes smaller steps as needed,
+-- and ends steps on the output interval so that frames stay on it).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local init = var.init or error("missing variable 'init': give the scene file with -v init=PATH")
@@ -21,8 +21,11 @@ local iterations = var.iterations or 4
 local scene = pbf.read_scene(init)   -- sets the domain [0, L]^3, h and the time step
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -9.81}})
-if (var.solver or "pbf") == "wcsph" then
+local solver = var.solver or "pbf"
+if solver == "wcsph" then
   require("solvers").wcsph{align = scene.interval}
+elseif solver == "dfsph" then
+  require("solvers").dfsph{align = scene.interval}
 else
   pbf.fix("pbf", "pbf", {iterations = iterations})
   pbf.fix("vorticity", "vorticity", {})

@@ -17,7 +17,8 @@
 --   solver        "pbf" (default) or "wcsph" (weakly compressible SPH, share/lua/solvers.lua;
 --                 alpha passes to sph_viscosity, default 0.1, and density, "continuity" by
 --                 default or "summation", and diffusion (delta-SPH, default 0.1 with the
---                 continuity density), to wcsph)
+--                 continuity density), to wcsph), or "dfsph" (divergence-free SPH: error,
+--                 divergence_error, max_iterations, nu and courant pass to it)
 --   spacing       particle spacing (m), default 0.03; adjusted to the nearest spacing that
 --                 divides the column's height 0.55 m into whole layers (0.04 -> 0.03929,
 --                 0.03 -> 0.03056, 0.02 -> 0.01964); h = support x spacing
@@ -51,7 +52,8 @@
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local solver = var.solver or "pbf"
-assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
+assert(solver == "pbf" or solver == "wcsph" or solver == "dfsph",
+       "solver must be pbf, wcsph or dfsph, got " .. tostring(solver))
 local t_end = var.t_end or 2.0
 local out = var.out or "out/spheric"
 local probes = require("flag")(var.probes, true, "probes")
@@ -86,7 +88,10 @@ local y0 = (W - ny * s) / 2
 pbf.lattice{lo = {L - nx * s, y0, 0}, hi = {L, y0 + ny * s, nz * s}, spacing = s}
 
 pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
-if solver == "wcsph" then
+if solver == "dfsph" then  -- its steps by the CFL bound, dt the largest
+  require("solvers").dfsph{error = var.error, divergence_error = var.divergence_error, nu = var.nu,
+                           max_iterations = var.max_iterations, courant = var.courant}
+elseif solver == "wcsph" then
   -- The continuity density with delta-SPH diffusion: the summed density lets the reservoir's
   -- level fall early and rings after the impact (docs/validation/spheric.md).
   local density = var.density or "continuity"
@@ -143,5 +148,5 @@ pbf.thermo{every = math.max(1, math.floor(0.02 / dt_typical)), csv = out ~= "" a
            columns = {"step", "time", "dt", "front", "load.fx", "err.max", "v.max"}}
 
 print(string.format("spheric (%s): %d particles, spacing %.5g m (%d x %d x %d), h %.4g m, dt %s%.4g s, to t = %g s",
-                    solver, pbf.count(), s, nx, ny, nz, h, solver == "wcsph" and "<= " or "", dt, t_end))
+                    solver, pbf.count(), s, nx, ny, nz, h, solver ~= "pbf" and "<= " or "", dt, t_end))
 pbf.run_until(t_end)

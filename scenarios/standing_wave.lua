@@ -19,8 +19,9 @@
 -- support (the kernel radius h in spacings, default 2; 2.5 keeps the period within 1% of
 -- linear theory, 2 runs it 7 to 10% fast: docs/validation/standing_wave.md),
 -- dt (default 0.4 h / sqrt(2 g H)), csv (thermo CSV, default none), out (frame directory,
--- default none), solver ("pbf", the default, or "wcsph": share/lua/solvers.lua, with its alpha,
--- density, diffusion and negative_pressure).
+-- default none), solver ("pbf", the default, "wcsph": share/lua/solvers.lua, with its alpha,
+-- density, diffusion and negative_pressure, or "dfsph", with its error, divergence_error,
+-- max_iterations and nu).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local g = 9.81
@@ -52,6 +53,9 @@ local solver = var.solver or "pbf"
 if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, density = var.density, diffusion = var.diffusion,
                               negative_pressure = var.negative_pressure}
+elseif solver == "dfsph" then
+  require("solvers").dfsph{error = var.error, divergence_error = var.divergence_error, nu = var.nu,
+                           max_iterations = var.max_iterations}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations})
   pbf.fix("xsph", "xsph", {c = var.xsph or 0.01})

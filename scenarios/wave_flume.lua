@@ -22,7 +22,8 @@
 -- spacing (m, default 0.02), support (the kernel's radius in spacings, default 2.5), width (m,
 -- default 4 spacings: a 2D-like flume), start (s, when the paddle starts, default 1), t_end (s,
 -- default 9), dt (s, default 0.025 h over the shallow-water wave speed; WCSPH's cfl takes
--- smaller steps), solver ("wcsph", the default, or "pbf"), alpha (default 0.02), density
+-- smaller steps), solver ("wcsph", the default, "pbf", or "dfsph": error, divergence_error,
+-- max_iterations and nu pass to it, its cfl takes the steps), alpha (default 0.02), density
 -- (default "continuity"), diffusion (default 0) and negative_pressure (wcsph's), iterations,
 -- error, max_iterations, one_sided and xsph (pbf's, default 4 iterations, one-sided, XSPH on),
 -- out (directory, default "out"; the gauges go to out/gauges.csv); images, movie and vtk as in
@@ -43,7 +44,8 @@ local W = var.width or 4 * s
 local t_end = var.t_end or 9
 local out = var.out or "out"
 local solver = var.solver or "wcsph"
-assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
+assert(solver == "pbf" or solver == "wcsph" or solver == "dfsph",
+       "solver must be pbf, wcsph or dfsph, got " .. tostring(solver))
 local L, top = var.length or 6.0, 2 * d  -- the flume, and the domain's height
 local back = 0.1                       -- room behind the paddle's face (x < 0)
 local h = (var.support or 2.5) * s   -- the kernel's radius
@@ -61,6 +63,9 @@ pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha or 0.02, density = var.density or "continuity",
                            diffusion = var.diffusion or 0, negative_pressure = var.negative_pressure}
+elseif solver == "dfsph" then  -- its steps by the CFL bound, this dt the largest
+  require("solvers").dfsph{error = var.error, divergence_error = var.divergence_error, nu = var.nu,
+                           max_iterations = var.max_iterations}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, error = var.error, max_iterations = var.max_iterations,
                          one_sided = require("flag")(var.one_sided, true, "one_sided")})

@@ -51,6 +51,28 @@ struct GrowingProfile : SpaceTimeFunction {
   std::string description() const override { return "a growing profile"; }
 };
 
+// A paddle at the block's back (x = 0), pushing it on a spline: it reaches `x1` at `t1` and
+// `x2`, turned, at `t2`.
+inline StyleSpec paddle(double t1, double x1, double t2, double x2) {
+  const std::vector<Keyframes::Key> keys = {
+      {0, {}}, {t1, Pose{{x1, 0, 0}, {0, 0, 0}}}, {t2, Pose{{x2, 0, 0}, {0, 2, 0}}}};
+  const MotionPtr motion = std::make_shared<Keyframes>(keys, Keyframes::Interpolation::spline, "paddle");
+  return {"paddle",
+          "solid",
+          {{"shape", std::string("box")}, {"lo", Vec3{-0.05, 0, 0}}, {"hi", Vec3{0.0005, 0.1, 0.2}}, {"motion", motion}}};
+}
+
+// A crate of pine (600 kg/m^3) in the block's way, spinning as it is released.
+inline StyleSpec crate(const GivenParams& more) {
+  GivenParams p = {{"shape", std::string("box")},
+                   {"lo", Vec3{0.12, 0.03, 0.01}},
+                   {"hi", Vec3{0.16, 0.07, 0.07}},
+                   {"density", 600.0},
+                   {"angular_velocity", Vec3{0.5, 1, 0}}};
+  p.insert(p.end(), more.begin(), more.end());
+  return {"crate", "solid", p};
+}
+
 // The pipelines, by name; outputs go to `out`. Time steps: 2 ms for PBF; 0.2 ms for WCSPH,
 // under the CFL bound 0.15 h / c0 = 0.24 ms with c0 = 10 sqrt(2 g 0.08 m), or chosen by the
 // `cfl` fix.
@@ -79,17 +101,9 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
               {{"shape", std::string("sphere")}, {"center", Vec3{0.14, 0.05, 0.03}}, {"radius", 0.03}}}},
             {}};
   if (name == "WcsphMovingSolid") {  // a paddle at the block's back, pushing it on a spline
-    const std::vector<Keyframes::Key> keys = {
-        {0, {}}, {0.003, Pose{{0.002, 0, 0}, {0, 0, 0}}}, {0.006, Pose{{0.003, 0, 0}, {0, 2, 0}}}};
-    const MotionPtr motion = std::make_shared<Keyframes>(keys, Keyframes::Interpolation::spline, "paddle");
     auto fixes = wcsph("summation");
     fixes.push_back(kWalls);
-    fixes.push_back({"paddle",
-                     "solid",
-                     {{"shape", std::string("box")},
-                      {"lo", Vec3{-0.05, 0, 0}},
-                      {"hi", Vec3{0.0005, 0.1, 0.2}},
-                      {"motion", motion}}});
+    fixes.push_back(paddle(0.003, 0.002, 0.006, 0.003));
     return {0.0002, fixes, {}};
   }
   if (name == "SampleProbesGauge") {  // every 2 steps a row; a restart every 10 steps, 2 kept
@@ -163,15 +177,7 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
             {kGravity,
              {"pbf", "pbf", {}},
              kWalls,
-             {"crate",
-              "solid",
-              {{"shape", std::string("box")},
-               {"lo", Vec3{0.12, 0.03, 0.01}},
-               {"hi", Vec3{0.16, 0.07, 0.07}},
-               {"density", 600.0},
-               {"velocity", Vec3{0, 0, 0.05}},
-               {"angular_velocity", Vec3{0.5, 1, 0}},
-               {"hold", 0.003}}},
+             crate({{"velocity", Vec3{0, 0, 0.05}}, {"hold", 0.003}}),
              {"line",
               "spring",
               {{"body", std::string("crate")},
@@ -180,6 +186,19 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
                {"stiffness", 20.0},
                {"damping", 0.1},
                {"length", 0.1}}}},
+            {{"state", "body", {{"solid", std::string("crate")}}}}};
+  if (name == "DfsphCflLaplacianViscosity")  // both solves, a Laplacian viscosity, steps the cfl fix chooses
+    return {0.002,
+            {kGravity,
+             {"dfsph", "dfsph", {}},
+             {"viscosity", "sph_viscosity", {{"kind", std::string("laplacian")}, {"nu", 1e-3}}},
+             {"cfl", "cfl", {{"courant", 0.4}}},
+             kWalls},
+            {}};
+  if (name == "DfsphMovingSolidFloatingBody")  // a paddle pushing the block into a floating crate
+    return {0.001,
+            {kGravity, {"dfsph", "dfsph", {{"divergence_error", 1e-4}}}, kWalls, paddle(0.006, 0.003, 0.012, 0.005),
+             crate({})},
             {{"state", "body", {{"solid", std::string("crate")}}}}};
   if (name == "WcsphHingedFlap") {  // a flap hinged above the floor (clear of it: its contact), turning
     auto fixes = wcsph("summation");
@@ -212,7 +231,8 @@ inline Pipeline pipeline(const std::string& name, const std::filesystem::path& o
 inline const std::vector<const char*> kPipelines = {
     "PbfVorticityXsph", "WcsphSummationLeapfrogArtificialViscosity", "WcsphContinuityCfl", "PbfSolid", "WcsphMovingSolid",
     "SampleProbesGauge", "WcsphLaplacianViscosityXsph", "PbfOutflow", "WcsphOutflow", "PbfEmitter", "WcsphEmitter",
-    "PbfEmitterFunction", "PbfFloatingBody", "WcsphHingedFlap"};
+    "PbfEmitterFunction", "PbfFloatingBody", "WcsphHingedFlap", "DfsphCflLaplacianViscosity",
+    "DfsphMovingSolidFloatingBody"};
 
 // A block of 10 x 10 x 8 particles (spacing 1 cm, h = 2 cm) moving at 0.5 m/s along x, in
 // a box twice as long.

@@ -40,10 +40,20 @@ const std::int64_t kIterations = 4;     // pbf's default
 // The solver as share/lua/solvers.lua assembles it: pbf with its defaults (`iterations` for the
 // convergence check below), or WCSPH (leapfrog, wcsph with sound speed c0, artificial
 // viscosity, cfl choosing each step under the script's).
+// DFSPH as solvers.lua has it too: dfsph at its tolerances (a tenth of them for the
+// convergence check: `iterations` twice the default), a Laplacian viscosity of 1e-3 m^2/s and
+// cfl with courant 0.4.
 void add_solver(Simulation& sim, const std::string& solver, double c0, const GivenParams& wcsph = {},
                 const GivenParams& cfl = {}, std::int64_t iterations = kIterations) {
   if (solver == "pbf") {
     sim.add_fix(fix("pbf", "pbf", {{"iterations", iterations}}));
+    return;
+  }
+  if (solver == "dfsph") {
+    const double tighter = iterations == kIterations ? 1 : 0.1;
+    sim.add_fix(fix("dfsph", "dfsph", {{"error", 1e-4 * tighter}, {"divergence_error", 1e-3 * tighter}}));
+    sim.add_fix(fix("viscosity", "sph_viscosity", {{"kind", std::string("laplacian")}, {"nu", 1e-3}}));
+    sim.add_fix(fix("cfl", "cfl", {{"courant", 0.4}}));
     return;
   }
   GivenParams p = wcsph;
@@ -61,7 +71,7 @@ void add_solver(Simulation& sim, const std::string& solver, double c0, const Giv
 // potential plus this, less what the viscosity takes (near walls only nearly: a wall mirrors
 // the particle's pressure). PBF stores none.
 double elastic_energy(Simulation& sim, const std::string& solver, double c0) {
-  if (solver == "pbf") return 0;
+  if (solver != "wcsph") return 0;  // PBF and DFSPH store none
   const auto& P = sim.particles();
   const real* rho = sim.solver_density();
   double sum = 0;
@@ -193,12 +203,12 @@ TEST_P(CubeDrop, FromFiveMetresIntoAShallowPool) {
   };
   const Seen seen = run(kIterations);
   EXPECT_LE(seen.rise, energy_tolerance(solver));
-  EXPECT_LT(seen.densest, solver == "pbf" ? 1.0 : impact / c0);
-  if (solver == "pbf") EXPECT_TRUE(converges(seen, run(2 * kIterations)));
+  EXPECT_LT(seen.densest, solver != "wcsph" ? 1.0 : impact / c0);
+  if (solver != "wcsph") EXPECT_TRUE(converges(seen, run(2 * kIterations)));
   EXPECT_GT(seen.densest, 0.0);  // it did hit the pool
 }
 
-INSTANTIATE_TEST_SUITE_P(HardCases, CubeDrop, ::testing::Values("pbf", "wcsph"), solver_name);
+INSTANTIATE_TEST_SUITE_P(HardCases, CubeDrop, ::testing::Values("pbf", "wcsph", "dfsph"), solver_name);
 
 // A column 4 cm square and 32 cm high (aspect ratio 8), at rest and at rest density in the
 // middle of a 0.4 m square floor, collapses and spreads. PBF at 0.4 h / sqrt(2 g H) a step;
@@ -234,11 +244,13 @@ TEST_P(ThinColumn, CollapsesWithoutGainingEnergy) {
   };
   const Seen seen = run(kIterations);
   EXPECT_LE(seen.rise, energy_tolerance(solver));
-  EXPECT_LT(seen.densest, solver == "pbf" ? 1.0 : fall / c0);
-  if (solver == "pbf") EXPECT_TRUE(converges(seen, run(2 * kIterations)));
+  EXPECT_LT(seen.densest, solver != "wcsph" ? 1.0 : fall / c0);
+  if (solver != "wcsph") EXPECT_TRUE(converges(seen, run(2 * kIterations)));
   EXPECT_LT(centre, height / 2 / 4);  // the centre of mass's height
 }
 
+// (DFSPH's energy here rises 0.28% in the first steps: its state after a step holds the positions
+// before the drift its velocity makes, so kinetic energy leads potential by half a kick; open.)
 INSTANTIATE_TEST_SUITE_P(HardCases, ThinColumn, ::testing::Values("pbf", "wcsph"), solver_name);
 
 // A block 8 cm on a side at twice the rest density (particles of the rest-density mass of
@@ -281,12 +293,12 @@ TEST_P(CompressedBlock, ExpandsNoFasterThanItsBound) {
   const double start = value(sim, "start", 1);
   ASSERT_GT(start, 0.9);
   const Watch& seen = run_watching(sim, solver, c0, 0.05);
-  const double expand = solver == "pbf" ? (std::cbrt(2.0) - 1) * std::sqrt(3.0) * side / 2 / dt : 7.0 / 3 * c0;
+  const double expand = solver != "wcsph" ? (std::cbrt(2.0) - 1) * std::sqrt(3.0) * side / 2 / dt : 7.0 / 3 * c0;
   EXPECT_LT(seen.fastest, std::sqrt(expand * expand + 2 * g * box));
   EXPECT_LE(seen.densest, start);
 }
 
-INSTANTIATE_TEST_SUITE_P(HardCases, CompressedBlock, ::testing::Values("pbf", "wcsph"), solver_name);
+INSTANTIATE_TEST_SUITE_P(HardCases, CompressedBlock, ::testing::Values("pbf", "wcsph", "dfsph"), solver_name);
 
 // A closed box 8 cm on a side filled with fluid at rest density: a lattice of spacing s = 1 cm
 // whose outer particles lie s/2 from the faces, on every face, edge and corner (exactly where
@@ -330,9 +342,12 @@ TEST_P(FullBox, HoldsFluidPressedIntoEveryCornerAndFace) {
   };
   const Seen seen = run(kIterations);
   EXPECT_LE(seen.rise, energy_tolerance(solver));
-  EXPECT_LT(seen.densest, solver == "pbf" ? 1.0 : 3 * U / c0 + 0.05);
-  if (solver == "pbf") EXPECT_TRUE(converges(seen, run(2 * kIterations)));
+  EXPECT_LT(seen.densest, solver != "wcsph" ? 1.0 : 3 * U / c0 + 0.05);
+  if (solver != "wcsph") EXPECT_TRUE(converges(seen, run(2 * kIterations)));
 }
 
-INSTANTIATE_TEST_SUITE_P(HardCases, FullBox, ::testing::Values("pbf_box", "pbf_solid", "wcsph_box", "wcsph_solid"),
+INSTANTIATE_TEST_SUITE_P(HardCases, FullBox,
+                         // (DFSPH: 70% compression in the box, where its solves reach their caps and a tenth of
+                         // the tolerances does not lower it; 200% at the solid container's corners; open.)
+                         ::testing::Values("pbf_box", "pbf_solid", "wcsph_box", "wcsph_solid"),
                          solver_name);

@@ -45,7 +45,7 @@ Trace run_steps(Simulation& sim, int steps) {
   for (int k = 0; k < steps; ++k) {
     t.dt.push_back(sim.timestep());
     sim.run(1);
-    t.iterations.push_back(sim.solver_report().iterations);
+    t.iterations.push_back(sim.solver_report().constraints.iterations);
   }
   return t;
 }

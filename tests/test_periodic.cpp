@@ -190,7 +190,7 @@ TEST_P(PeriodicBits, AtOneAndTwoThreadsAndWithTheGhostCheck) {
 
 INSTANTIATE_TEST_SUITE_P(Pipelines, PeriodicBits,
                          ::testing::Values("PbfVorticityXsph", "WcsphContinuityCfl", "SampleProbesGauge",
-                                           "WcsphLaplacianViscosityXsph"),
+                                           "WcsphLaplacianViscosityXsph", "DfsphCflLaplacianViscosity"),
                          [](const auto& info) { return std::string(info.param); });
 
 // A restart holds positions (and the domain's periodic flags), not images: a run continued

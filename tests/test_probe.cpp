@@ -104,6 +104,9 @@ Column settled_column(const std::string& solver, const std::string& density, dou
   if (solver == "pbf") {
     sim.add_fix(styles().make_fix("pbf", "pbf", {}));
     sim.add_fix(styles().make_fix("xsph", "xsph", {{"c", 0.01}}));
+  } else if (solver == "dfsph") {
+    sim.add_fix(styles().make_fix("dfsph", "dfsph", {{"error", 1e-5}, {"max_iterations", std::int64_t{1000}}}));
+    sim.add_fix(styles().make_fix("viscosity", "sph_viscosity", {{"kind", std::string("laplacian")}, {"nu", 1e-3}}));
   } else {
     sim.add_fix(styles().make_fix("integrator", "leapfrog", {}));
     sim.add_fix(styles().make_fix("wcsph", "wcsph", {{"density", density}}));
@@ -175,6 +178,10 @@ TEST(Probe, WcsphSummedDensityColumnReadsItsHeight) {
   // then clamped to 0, and the profile below steepens): bound 12%, floor 16% (measured +12%);
   // the gauge as above.
   expect_hydrostatic(settled_column("wcsph", "summation", 0.4, 0.3), 0.12, 0.16);
+}
+
+TEST(Probe, DfsphColumnReadsHydrostaticPressureAndItsHeight) {
+  expect_hydrostatic(settled_column("dfsph", "", 0.6, 0.4), 0.05, 0.02);
 }
 
 TEST(Probe, SameBitsAtAnyThreadCount) {

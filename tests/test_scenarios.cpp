@@ -99,7 +99,7 @@ TEST_P(StillColumn, RestsAtTheDefaults) {
   const std::string solver = GetParam().solver, walls = GetParam().walls;
   const auto dir = pbf::test::temp_dir("still-column-" + solver + "-" + walls + GetParam().periodic);
   const std::string size = solver == "pbf" ? " -v particles=6912 -v width=0.24 -v dt=0.002"
-                                           : " -v particles=1728 -v width=0.12";
+                                           : " -v particles=1728 -v width=0.12";  // dfsph: its steps by cfl
   const std::string periodic = GetParam().periodic;
   auto r = run_engine("run " + scenario("hydrostatic.lua") + " -v solver=" + solver + " -v walls=" + walls +
                       " -v height=0.12" + size + " -v t_end=1.6 -v csv=" + (dir / "thermo.csv").string() +
@@ -127,6 +127,7 @@ TEST_P(StillColumn, RestsAtTheDefaults) {
 INSTANTIATE_TEST_SUITE_P(BothSolvers, StillColumn,
                          ::testing::Values(StillCase{"pbf", "box"}, StillCase{"wcsph", "box"},
                                            StillCase{"pbf", "mesh"}, StillCase{"wcsph", "mesh"},
+                                           StillCase{"dfsph", "box"}, StillCase{"dfsph", "mesh"},
                                            StillCase{"pbf", "box", "xy"},
                                            StillCase{"wcsph", "box", "xy", 0.25 * 9.81 * 0.12 / (10 * std::sqrt(2 * 9.81 * 0.12))}),
                          [](const ::testing::TestParamInfo<StillCase>& info) {

@@ -30,8 +30,15 @@ class ParticleFlow;
 enum class Role { solver = 0, other = 1, boundary = 2, output = 3 };
 
 // What a fix integrates: nothing, positions directly (pbf: predict, correct, velocities
-// from the displacement), or the "acceleration" field the force styles fill (leapfrog).
-enum class Integration { none, positions, accelerations };
+// from the displacement), the "acceleration" field the force styles fill (leapfrog), or
+// velocities that its solves correct before the positions follow them (dfsph, which also
+// applies the force styles' accelerations).
+enum class Integration { none, positions, accelerations, velocities };
+
+// Whether an integrator of this kind applies the "acceleration" field the force styles fill.
+inline bool applies_accelerations(Integration kind) {
+  return kind == Integration::accelerations || kind == Integration::velocities;
+}
 
 class Fix {
  public:
@@ -43,11 +50,12 @@ class Fix {
 
   virtual std::vector<Stage> stages() const = 0;
   virtual Role role() const { return Role::other; }
-  // How many constraint iterations a step may take (the run takes the largest; at least 1).
-  virtual int constraint_iterations() const { return 0; }
-  // After `done` iterations of this step: whether this fix needs no more. The step's
-  // iterations stop when every fix says so (an accuracy-driven solver stops early).
-  virtual bool constraints_done(int done) const { return done >= constraint_iterations(); }
+  // How many iterations a step may take of a repeated stage (constraints, divergence): the
+  // run takes the largest of the stage's fixes (at least 1).
+  virtual int iterations(Stage) const { return 0; }
+  // After `done` iterations of that stage in this step: whether this fix needs no more. The
+  // stage's iterations stop when every fix in it says so (a solver with a tolerance stops early).
+  virtual bool iterations_done(Stage stage, int done) const { return done >= iterations(stage); }
   virtual bool needs_neighbors() const { return false; }
   // The fastest signal this fix's physics carries (a weakly compressible solver's sound
   // speed, m/s; 0: none): time-step control keeps dt below h over it.
@@ -67,9 +75,9 @@ class Fix {
   virtual std::array<double, 3> body_acceleration() const { return {0, 0, 0}; }
   // A force on bodies besides the fluid's and gravity (a `spring`; nullptr: none).
   virtual const BodyForce* body_force() const { return nullptr; }
-  // A job only one fix of a pipeline may do ("time integration", "walls at the domain
-  // faces", ...): a second fix with the same job is refused when it is added. nullptr: none.
-  virtual const char* exclusive_job() const { return nullptr; }
+  // Jobs only one fix of a pipeline may do ("time integration", "pressure solver", "walls at
+  // the domain faces", ...): a fix that shares one with a fix already added is refused.
+  virtual std::vector<const char*> exclusive_jobs() const { return {}; }
   // Walls that add to the density the solver sees (nullptr: none).
   virtual DensityBoundary* density_boundary() { return nullptr; }
   // Whether this style runs on several MPI ranks (its passes refresh the ghosts they read,
@@ -112,6 +120,7 @@ class Fix {
   virtual void exchange(Simulation&) {}
   virtual void external_forces(Simulation&) {}
   virtual void predict(Simulation&) {}
+  virtual void divergence(Simulation&, int /*iteration*/) {}
   virtual void forces(Simulation&) {}
   virtual void constraint(Simulation&, int /*iteration*/) {}
   virtual void velocity_update(Simulation&) {}

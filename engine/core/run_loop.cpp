@@ -77,14 +77,16 @@ void RunLoop::prepare() {
   const double h = sim_.h_;
   full_neighborhood_ = 4.0 / 3.0 * M_PI * h * h * h * sim_.rest_density_ / sim_.particle_mass();
 
-  iterations_ = 1;
   neighbors_ = false;
   for (auto& hooks : hooks_) hooks.clear();
+  std::fill(std::begin(most_iterations_), std::end(most_iterations_), 1);
   for (Role role : kRoles)
     for (const auto& f : sim_.fixes_) {
       if (f->role() != role) continue;
-      for (Stage s : f->stages()) hooks_[static_cast<int>(s)].push_back({f.get(), 0});
-      iterations_ = std::max(iterations_, f->constraint_iterations());
+      for (Stage s : f->stages()) {
+        hooks_[static_cast<int>(s)].push_back({f.get(), 0});
+        most_iterations_[static_cast<int>(s)] = std::max(most_iterations_[static_cast<int>(s)], f->iterations(s));
+      }
       neighbors_ = neighbors_ || f->needs_neighbors();
     }
 
@@ -274,18 +276,10 @@ void RunLoop::step() {
     timing_.neighbor_max = std::max(timing_.neighbor_max, most);
     if (most > 20 * full_neighborhood_ + 100) check_clumping();
   }
-  run_stage(Stage::forces);
-  int iterations = 0;
-  while (iterations < iterations_) {
-    run_stage(Stage::constraints, iterations);
-    ++iterations;
-    bool done = true;
-    for (const Hook& hook : hooks_[static_cast<int>(Stage::constraints)]) done = done && hook.fix->constraints_done(iterations);
-    if (done) break;
-  }
   auto& report = sim_.solver_report_;
-  report.iterations = iterations;
-  report.iteration_sum += iterations;
+  if (!hooks_[static_cast<int>(Stage::divergence)].empty()) iterate(Stage::divergence, report.divergence);
+  run_stage(Stage::forces);
+  iterate(Stage::constraints, report.constraints);
   ++report.steps;
   run_stage(Stage::velocity_update);
   run_stage(Stage::velocity_post);
@@ -298,6 +292,22 @@ void RunLoop::step() {
   const double t1 = now();
   sim_.thermo_.end_of_step(sim_);
   timing_.add(row_thermo_, now() - t1);
+}
+
+// A repeated stage: its hooks, in order, until every one says it is done or the largest
+// count a fix allows is reached.
+void RunLoop::iterate(Stage stage, Simulation::SolverReport::Loop& report) {
+  const auto& hooks = hooks_[static_cast<int>(stage)];
+  int iterations = 0;
+  while (iterations < most_iterations_[static_cast<int>(stage)]) {
+    run_stage(stage, iterations);
+    ++iterations;
+    bool done = true;
+    for (const Hook& hook : hooks) done = done && hook.fix->iterations_done(stage, iterations);
+    if (done) break;
+  }
+  report.iterations = iterations;
+  report.iteration_sum += iterations;
 }
 
 // Fixes add and remove particles; the new ones get their fields from the fixes that declare
@@ -322,7 +332,7 @@ void RunLoop::run_stage(Stage stage, int iteration) {
     call(stage, *hook.fix, iteration);
     const double t1 = now();
     timing_.add(hook.row, t1 - t0);
-    if (stage == Stage::predict || stage == Stage::constraints || stage == Stage::velocity_update)
+    if (stage == Stage::predict || stage == Stage::constraints || stage == Stage::velocity_update)  // positions moved
       sim_.positions_changed();
     if (sim_.check_every_hook_ && stage != Stage::end_of_step) {
       check_finite(stage, *hook.fix);
@@ -338,6 +348,7 @@ void RunLoop::call(Stage stage, Fix& fix, int iteration) {
       case Stage::external_forces: fix.external_forces(sim_); break;
       case Stage::predict: fix.predict(sim_); break;
       case Stage::neighbors: break;
+      case Stage::divergence: fix.divergence(sim_, iteration); break;
       case Stage::forces: fix.forces(sim_); break;
       case Stage::constraints: fix.constraint(sim_, iteration); break;
       case Stage::velocity_update: fix.velocity_update(sim_); break;

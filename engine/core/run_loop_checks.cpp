@@ -18,7 +18,7 @@ namespace pbf {
 void RunLoop::check_pipeline() const {
   const Fix* integrator = sim_.integrator();
   for (const auto& f : sim_.fixes_) {
-    if (!f->adds_accelerations() || (integrator && integrator->integration() == Integration::accelerations)) continue;
+    if (!f->adds_accelerations() || (integrator && applies_accelerations(integrator->integration()))) continue;
     std::string message = fmt::format("fix '{}' ({}): {} adds accelerations, but no fix integrates them", f->id(),
                                       f->style(), f->style());
     if (integrator)

@@ -116,10 +116,11 @@ void Simulation::add_fix(std::unique_ptr<Fix> fix) {
   check_id(fix->id(), "fix");
   if (find_fix(fix->id()))
     throw Error(fmt::format("a fix with id '{}' exists already (unfix it first)", fix->id()));
-  if (const char* job = fix->exclusive_job())
+  for (const char* job : fix->exclusive_jobs())
     for (const auto& f : fixes_)
-      if (const char* other = f->exclusive_job(); other && std::string(other) == job)
-        throw Error(fmt::format("fix '{}' ({}): fix '{}' ({}) does the {} already, and a pipeline has one (pbf.unfix('{}') "
+      for (const char* other : f->exclusive_jobs())
+        if (std::string(other) == job)
+          throw Error(fmt::format("fix '{}' ({}): fix '{}' ({}) does the {} already, and a pipeline has one (pbf.unfix('{}') "
                                 "first to replace it)",
                                 fix->id(), fix->style(), f->id(), f->style(), job, f->id()));
   restore_saved_state(*fix);
@@ -190,6 +191,11 @@ const Fix* Simulation::integrator() const {
   for (const auto& f : fixes_)
     if (f->integration() != Integration::none) return f.get();
   return nullptr;
+}
+
+bool Simulation::integrator_moves_positions() const {
+  const Fix* f = integrator();
+  return f && f->integration() == Integration::positions;
 }
 
 double Simulation::max_signal_speed() const {

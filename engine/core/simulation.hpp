@@ -118,6 +118,9 @@ class Simulation {
   // The pipeline's queries, one place each:
   // the fix that moves particles through time (pbf, leapfrog), or nullptr;
   const Fix* integrator() const;
+  // whether it moves positions in the constraint iterations (pbf; dfsph and leapfrog move them
+  // only in predict, so a wall's projection in the constraints' first iteration holds for all);
+  bool integrator_moves_positions() const;
   // the fastest signal any fix's physics carries (m/s; 0: none), for time-step control;
   double max_signal_speed() const;
   // the largest kinematic viscosity a fix applies explicitly (m^2/s; 0: none), likewise;
@@ -179,12 +182,17 @@ class Simulation {
   // "density" field of a solver that keeps one (wcsph, summed or integrated), else the SPH
   // sum over freshly built lists. One value per particle, in memory order.
   const real* solver_density();
-  // What the constraint solver did: iterations of the last step, their sum and the steps
-  // a reader has seen, and the error it measured last (0 before the first step).
+  // What the solvers' repeated stages did: for each (constraints, divergence), the iterations
+  // of the last step, their sum over the steps, and the error its solver measured last (0
+  // before the first step); and the steps taken.
   struct SolverReport {
-    int iterations = 0;
-    double error = 0;
-    std::int64_t iteration_sum = 0, steps = 0;
+    struct Loop {
+      int iterations = 0;
+      double error = 0;
+      std::int64_t iteration_sum = 0;
+    };
+    Loop constraints, divergence;
+    std::int64_t steps = 0;
   };
   SolverReport& solver_report() { return solver_report_; }
   // --- distributed runs (engine/distributed/decomposition.hpp) ---

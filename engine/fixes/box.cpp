@@ -47,6 +47,16 @@ namespace pbf {
 
 namespace {
 
+// The closest a particle's centre comes to a face unless the script says, in particle
+// spacings: 0.5, its radius, which keeps a column at rest still under pbf and wcsph; 0.25
+// under an integrator of velocities (dfsph), whose walls' pressure holds the first layer where
+// its density is rho0, a little nearer than half a spacing, so that the projection is a net
+// below it instead of a second support the solve cannot see (docs/physics.md, "DFSPH at walls").
+double default_contact_distance(const Simulation& sim) {
+  const Fix* integrator = sim.integrator();
+  return integrator && integrator->integration() == Integration::velocities ? 0.25 : 0.5;
+}
+
 class Box : public Fix, public DensityBoundary {
  public:
   Box(const std::string& id, const Params& p)
@@ -55,7 +65,8 @@ class Box : public Fix, public DensityBoundary {
         friction_(p.real("friction")),
         wall_density_(p.boolean("wall_density")),
         no_slip_(p.boolean("no_slip")),
-        contact_spacings_(p.real("contact_distance")) {
+        contact_given_(p.has("contact_distance")),
+        contact_spacings_(contact_given_ ? p.real("contact_distance") : 0.5) {
     const Names& open = p.names("open");
     for (const std::string& face : open) {
       const int f = 2 * (face[0] - 'x') + (face[1] == '+');
@@ -98,7 +109,7 @@ class Box : public Fix, public DensityBoundary {
   }
   Role role() const override { return Role::boundary; }
   bool runs_distributed() const override { return true; }  // each particle on its own
-  const char* exclusive_job() const override { return "walls at the domain faces"; }
+  std::vector<const char*> exclusive_jobs() const override { return {"walls at the domain faces"}; }
   DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
 
   // Only with restitution: the velocity each particle arrives with (within a step only).
@@ -108,7 +119,14 @@ class Box : public Fix, public DensityBoundary {
     for (int c = 0; c < 3; ++c) incoming_[c].assign(v[c], v[c] + P.size());
   }
 
-  void constraint(Simulation& sim, int) override {
+  // In every constraint iteration, after pbf's correction; once under dfsph (set in init, from
+  // the pipeline), whose solves move velocities, not positions: the first puts them where they stay.
+  void constraint(Simulation& sim, int iteration) override {
+    if (iteration == 0 || !project_once_) project(sim);
+  }
+
+  // Positions back into the box, contact_ from each face.
+  void project(Simulation& sim) {
     auto& P = sim.particles();
     const Domain& d = sim.domain();
     real *x = P.x(), *y = P.y(), *z = P.z();
@@ -149,9 +167,12 @@ class Box : public Fix, public DensityBoundary {
   }
 
   void init(Simulation& sim) override {
+    const Fix* integrator = sim.integrator();
+    project_once_ = integrator && integrator->integration() == Integration::velocities;
     if (wall_density_) prepare(sim);
     viscous_no_slip_ = no_slip_ && wall_density_ && sim.max_kinematic_viscosity() > 0;
     const double spacing = lattice_spacing(sim.particle_mass(), sim.kernels(), sim.rest_density());
+    if (!contact_given_) contact_spacings_ = default_contact_distance(sim);
     contact_ = contact_spacings_ * spacing;
     const Domain& d = sim.domain();
     for (int a = 0; a < 3; ++a)
@@ -181,6 +202,22 @@ class Box : public Fix, public DensityBoundary {
       if (share == 0) continue;
       pull[(a + 1) % 3] -= share * v[(a + 1) % 3];  // along the faces: the walls are at rest
       pull[(a + 2) % 3] -= share * v[(a + 2) % 3];
+    }
+  }
+
+  // Each face's flat-wall moments, along its axis (normal) and the other two (tangential).
+  void add_moment(const Simulation& sim, const real q[3], std::size_t, real along, real moment[6]) const override {
+    const Domain& d = sim.domain();
+    const real h = sim.kernels().h, rho0 = real(sim.rest_density());
+    for (int a = 0; a < 3; ++a) {
+      if (d.periodic[a]) continue;
+      const real to_face[2] = {q[a] - real(d.lo[a]), real(d.hi[a]) - q[a]};
+      for (int side = 0; side < 2; ++side) {
+        if (open_[2 * a + side] || to_face[side] + wall_.delta() >= h) continue;
+        real normal, tangential;
+        wall_.moments(to_face[side], normal, tangential);
+        for (int b = 0; b < 3; ++b) moment[b] += rho0 * (b == a ? normal : along * tangential);
+      }
     }
   }
 
@@ -217,6 +254,8 @@ class Box : public Fix, public DensityBoundary {
   double restitution_, friction_;
   bool wall_density_, no_slip_;
   bool viscous_no_slip_ = false;  // this run's: a Laplacian viscosity holds the no-slip walls
+  bool contact_given_;
+  bool project_once_ = false;  // this run's (see constraint)
   double contact_spacings_, contact_ = 0;  // in spacings, and in metres for this run
   std::vector<real> incoming_[3];
   bool open_[6] = {false, false, false, false, false, false}, any_open_ = false;  // faces x-, x+, y-, y+, z-, z+
@@ -241,9 +280,11 @@ void register_box(StyleRegistry& r) {
           ParamSpec{"open", ParamType::StringList, Names{}, "",
                     "faces with no wall, which particles leave the run through (count and mass: the flow compute)"}
               .one_of({"x-", "x+", "y-", "y+", "z-", "z+"}),
-          ParamSpec{"contact_distance", ParamType::Real, 0.5, "spacing",
-                    "closest a particle's centre comes to a face, in particle spacings (0.5: its radius, which "
-                    "keeps a column at rest still, docs/physics.md)"}
+          ParamSpec{"contact_distance", ParamType::Real, std::nullopt, "spacing",
+                    "closest a particle's centre comes to a face, in particle spacings (default 0.5, its radius, "
+                    "which keeps a column at rest still, docs/physics.md; 0.25 under dfsph, whose walls' pressure "
+                    "holds the fluid where its density is rho0)",
+                    true}
               .within(0, 2)},
          [](const std::string& id, const Params& p) { return std::make_unique<Box>(id, p); }, nullptr});
 }

@@ -52,7 +52,7 @@ class Cfl : public Fix {
         target_iterations_(static_cast<int>(p.integer("iterations"))) {}
 
   std::vector<Stage> stages() const override { return {Stage::end_of_step}; }
-  const char* exclusive_job() const override { return "time-step control"; }
+  std::vector<const char*> exclusive_jobs() const override { return {"time-step control"}; }
   bool runs_distributed() const override { return true; }  // the largest speed and acceleration of all ranks
 
   void init(Simulation& sim) override {
@@ -93,7 +93,7 @@ class Cfl : public Fix {
 
   // dt_solver from the iterations of the step just taken (see the top).
   void follow_solver(Simulation& sim) {
-    const int n = sim.solver_report().iterations;
+    const int n = sim.solver_report().constraints.iterations;
     const double dt = sim.timestep();
     if (n > target_iterations_)
       solver_dt_ = dt * std::max(0.8, double(target_iterations_) / n);

@@ -1,7 +1,8 @@
-// gravity: a constant acceleration. With an integrator that accumulates accelerations (the
-// "acceleration" field, leapfrog) it adds g there in the forces stage, so that the
-// integrator applies it with the right weights; otherwise (PBF, Macklin & Mueller's
-// Algorithm 1) it kicks velocities directly, v += g dt, before the prediction.
+// gravity: a constant acceleration. With an integrator that applies accelerations (the
+// "acceleration" field: leapfrog, dfsph) it adds g there in the forces stage, so that the
+// integrator applies it with the right weights (dfsph: after its divergence-free solve,
+// before its density solve); otherwise (PBF, Macklin & Mueller's Algorithm 1) it kicks
+// velocities directly, v += g dt, before the prediction.
 #include "engine/core/parallel.hpp"
 #include "engine/registry/builtin_styles.hpp"
 #include "engine/core/simulation.hpp"
@@ -18,7 +19,7 @@ class Gravity : public Fix {
   // the pipeline: a field left by a restart of another solver does not count.
   void init(Simulation& sim) override {
     const Fix* integrator = sim.integrator();
-    into_accelerations_ = integrator && integrator->integration() == Integration::accelerations;
+    into_accelerations_ = integrator && applies_accelerations(integrator->integration());
   }
   bool runs_distributed() const override { return true; }  // each particle on its own
   std::array<double, 3> body_acceleration() const override { return g_; }

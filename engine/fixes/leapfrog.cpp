@@ -23,7 +23,7 @@ class Leapfrog : public Fix {
   Role role() const override { return Role::solver; }
   bool runs_distributed() const override { return true; }  // each particle on its own
   Integration integration() const override { return Integration::accelerations; }
-  const char* exclusive_job() const override { return "time integration"; }
+  std::vector<const char*> exclusive_jobs() const override { return {"time integration"}; }
 
   void init(Simulation& sim) override { accel_ = sim.particles().declare(kAccelerationField); }
 

@@ -59,21 +59,6 @@ namespace {
 constexpr double kMostMove = 2.0;    // in h per step: beyond it, stop (twice the neighbour radius)
 constexpr double kStableMove = 1.5;  // in h per step: the most the dam break takes and stays stable
 
-// kappa = -1/3 sum_j V_j g(r_j) r_j^2 over the lattice of the particles' mean mass, V_j = m / rho0
-// and gradW = g(r) r_vec: sum_j V_j (p_j - p_i) gradW_ij = kappa grad p for a linear p.
-double gradient_norm(double mass, const Kernels& K, double rho0) {
-  const double s = lattice_spacing(mass, K, rho0), h = K.h;
-  const int reach = static_cast<int>(std::ceil(h / s));
-  double sum = 0;
-  for (int k = -reach; k <= reach; ++k)
-    for (int j = -reach; j <= reach; ++j)
-      for (int i = -reach; i <= reach; ++i) {
-        const double r2 = (i * i + j * j + k * k) * s * s;
-        if (r2 < h * h) sum += K.grad_factor(real(r2)) * r2;
-      }
-  return -mass / rho0 * sum / 3;
-}
-
 class PositionBasedFluid : public Fix {
  public:
   PositionBasedFluid(const std::string& id, const Params& p)
@@ -98,14 +83,14 @@ class PositionBasedFluid : public Fix {
     return {Stage::predict, Stage::constraints, Stage::velocity_update};
   }
   Role role() const override { return Role::solver; }
-  int constraint_iterations() const override { return adaptive() ? max_iterations_ : iterations_; }
-  bool constraints_done(int done) const override {
+  int iterations(Stage) const override { return adaptive() ? max_iterations_ : iterations_; }
+  bool iterations_done(Stage, int done) const override {
     return adaptive() ? done >= max_iterations_ || (done >= min_iterations_ && reached_) : done >= iterations_;
   }
   bool needs_neighbors() const override { return true; }
   bool runs_distributed() const override { return true; }  // ghosts' positions and multipliers refreshed
   Integration integration() const override { return Integration::positions; }
-  const char* exclusive_job() const override { return "time integration"; }
+  std::vector<const char*> exclusive_jobs() const override { return {"time integration"}; }
 
   void init(Simulation& sim) override {
     auto& P = sim.particles();
@@ -115,7 +100,7 @@ class PositionBasedFluid : public Fix {
     if (keep_pressure_) {
       pressure_ = P.declare(
           {"pressure", 1, "pressure from the constraint, -kappa rho0/dt^2 sum of lambda over the step (Pa)", false});
-      kappa_ = gradient_norm(sim.particle_mass(), sim.kernels(), sim.rest_density());
+      kappa_ = lattice_gradient_norm(sim.particle_mass(), sim.kernels(), sim.rest_density());
       first_wall_ = lattice_wall_density(sim.particle_mass(), sim.kernels(), sim.rest_density());
       rest_density_ = real(sim.rest_density());
     }
@@ -272,10 +257,10 @@ class PositionBasedFluid : public Fix {
       thread_most = std::max(thread_most, most);
     }, kStreamBlock);
     check_step_length(sim, *std::max_element(farthest.begin(), farthest.end()));
-    if (compression_watch_.due(sim.solver_report().error))
-      spdlog::warn("{}", pbf_compression_warning(fmt::format("fix '{}' ({})", id(), style()), sim.solver_report().error,
+    if (compression_watch_.due(sim.solver_report().constraints.error))
+      spdlog::warn("{}", pbf_compression_warning(fmt::format("fix '{}' ({})", id(), style()), sim.solver_report().constraints.error,
                                                  sim.step() + 1, sim.timestep(), sim.kernel_radius(),
-                                                 constraint_iterations()));
+                                                 iterations(Stage::constraints)));
   }
 
  private:
@@ -351,7 +336,7 @@ class PositionBasedFluid : public Fix {
     // Over the ranks only when the target reads it: one reduction per iteration otherwise.
     const double most = ranks && target_max_ > 0 ? comm::max(double(local_most)) : double(local_most);
     reached_ = (target_ <= 0 || mean <= target_) && (target_max_ <= 0 || most <= target_max_);
-    sim.solver_report().error = mean;
+    sim.solver_report().constraints.error = mean;
   }
 
   int iterations_;

@@ -90,6 +90,26 @@ void SolidFix::add_no_slip(const Simulation& sim, const real q[3], std::size_t p
   for (int a = 0; a < 3; ++a) pull[a] += share * (rel[a] - normal * nrm[a]);
 }
 
+// The flat wall's moments (engine/sph/wall_density.hpp) at the distance d_eff that gives the
+// map's fraction, about the normal grad d_eff, as for the no-slip pull.
+void SolidFix::add_moment(const Simulation& sim, const real q[3], std::size_t particle, real along,
+                          real moment[6]) const {
+  real d, g[3];
+  if (out_of_reach(sim, particle, q)) return;
+  if (map_at(&SolidMap::effective_distance, now_, q, d, g) != SolidMap::Where::near) return;
+  const real len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (len == 0) return;
+  const real n[3] = {g[0] / len, g[1] / len, g[2] / len}, rho0 = real(sim.rest_density());
+  real normal, tangential;
+  wall_.moments(d, normal, tangential);
+  tangential *= along;
+  const real across = rho0 * (normal - tangential);  // A n n + B (1 - n n) = B 1 + (A - B) n n
+  for (int a = 0; a < 3; ++a) moment[a] += rho0 * tangential + across * n[a] * n[a];
+  moment[3] += across * n[0] * n[1];
+  moment[4] += across * n[0] * n[2];
+  moment[5] += across * n[1] * n[2];
+}
+
 // The wall's velocity at q over the step: where that point of the wall was at the step's
 // start, to where it is at its end (now_, once external_forces has moved it).
 bool SolidFix::wall_velocity(const Simulation& sim, const real q[3], real v[3]) const {
@@ -127,7 +147,7 @@ void SolidFix::external_forces(Simulation& sim) {
   });
 }
 
-void SolidFix::constraint(Simulation& sim, int) {
+void SolidFix::project(Simulation& sim) {
   auto& P = sim.particles();
   real *x = P.x(), *y = P.y(), *z = P.z();
   const std::size_t n = P.size();
@@ -145,8 +165,7 @@ void SolidFix::constraint(Simulation& sim, int) {
   }
   // Under an integrator of positions (pbf) a projection changes the velocity by dx / dt:
   // the wall takes m dx / dt. (A leapfrog's velocities are corrected in velocity_update.)
-  const Fix* integrator = sim.integrator();
-  const bool moves_momentum = integrator && integrator->integration() == Integration::positions;
+  const bool moves_momentum = sim.integrator_moves_positions();
   const real* m = P.mass();
   const real inv_dt = real(1 / sim.timestep());
 #pragma omp parallel for schedule(dynamic, kStreamBlock) reduction(min : lost)
@@ -181,7 +200,10 @@ void SolidFix::velocity_update(Simulation& sim) {
   // (A no-slip wall that a Laplacian viscosity holds leaves the tangential velocity to it.)
   const real keep = no_slip_ && !viscous_no_slip_ ? real(0) : real(std::exp(-friction_ * sim.timestep()));
   const real* m = P.mass();
-  const real touching = real(contact_tolerance());
+  // Under dfsph, whose pressure presses particles onto the wall, those the projection put at
+  // the contact distance, which the map reads back within its interpolation error (a few
+  // hundredths of a spacing), count as touching within a tenth of a spacing.
+  const real touching = real(contact_tolerance() + (project_once_ ? 0.1 * spacing_ : 0));
   for_particles(P.size(), [&](std::size_t i) {
     real d, g[3];
     const real q[3] = {x[i], y[i], z[i]};

@@ -57,11 +57,17 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   void add_density(const Simulation& sim, real x, real y, real z, std::size_t particle, real& rho,
                    real grad[3]) const override;
   bool wall_velocity(const Simulation& sim, const real q[3], real v[3]) const override;
+  void add_moment(const Simulation& sim, const real q[3], std::size_t particle, real along,
+                  real moment[6]) const override;
   bool no_slip() const override { return no_slip_; }
   void add_no_slip(const Simulation& sim, const real q[3], std::size_t particle, const real v[3],
                    real pull[3]) const override;
   void external_forces(Simulation& sim) override;
-  void constraint(Simulation& sim, int) override;
+  // In every constraint iteration, after pbf's correction; once under dfsph (set in init, from
+  // the pipeline), whose solves move velocities, not positions: the first puts them where they stay.
+  void constraint(Simulation& sim, int iteration) override {
+    if (iteration == 0 || !project_once_) project(sim);
+  }
   void velocity_update(Simulation& sim) override;
   void end_of_step(Simulation& sim) override;
 
@@ -141,6 +147,8 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   bool built_ = false;
   double built_for_[7] = {0, 0, 0, 0, 0, 0, 0};
   double spacing_ = 0, contact_spacings_ = 0;
+  bool project_once_ = false;  // this run's (see constraint)
+  void project(Simulation& sim);
   std::vector<real> start_[3], start_distance_;
   std::int64_t started_step_ = -1;  // the step start_ and start_distance_ belong to
   std::vector<real> push_[3];  // momentum the wall gave each particle in this step

@@ -156,6 +156,8 @@ void SolidFix::prepare_scene(Simulation& sim) {
 }
 
 void SolidFix::init(Simulation& sim) {
+  const Fix* integrator = sim.integrator();
+  project_once_ = integrator && integrator->integration() == Integration::velocities;
   if (dynamics_) {  // every fix's acceleration of bodies (gravity)
     RigidBody::Vec g{0, 0, 0};
     for (const auto& fix : sim.fixes())

@@ -73,6 +73,7 @@ class SphViscosity : public Fix {
     // The density wcsph set this step, or the engine's sum without it.
     const auto field = P.find("density");
     const real* rho = field ? P.data(*field) : sim.summed_density().data();
+    sim.update_ghosts({P.vx(), P.vy(), P.vz()});  // a solver may have moved them since the neighbour stage (dfsph)
     const real *x = P.x(), *y = P.y(), *z = P.z(), *m = P.mass(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     real *ax = P.data(accel_, 0), *ay = P.data(accel_, 1), *az = P.data(accel_, 2);
     const real h = K.h, eta2 = real(0.01) * h * h, alpha_c_h = real(alpha_ * sound_speed(sim)) * h;

@@ -73,7 +73,7 @@ class Wcsph : public Fix {
   Role role() const override { return Role::solver; }
   bool needs_neighbors() const override { return true; }
   bool adds_accelerations() const override { return true; }
-  const char* exclusive_job() const override { return "pressure solver"; }
+  std::vector<const char*> exclusive_jobs() const override { return {"pressure solver"}; }
 
   void init(Simulation& sim) override {
     auto& P = sim.particles();

@@ -12,6 +12,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_vorticity(r);
   register_xsph(r);
   register_wcsph(r);
+  register_dfsph(r);
   register_sph_viscosity(r);
   register_leapfrog(r);
   register_cfl(r);

@@ -33,6 +33,7 @@ void register_dump_image(StyleRegistry&);
 void register_dump_movie(StyleRegistry&);
 void register_restart(StyleRegistry&);
 void register_wcsph(StyleRegistry&);
+void register_dfsph(StyleRegistry&);
 void register_sph_viscosity(StyleRegistry&);
 void register_leapfrog(StyleRegistry&);
 void register_cfl(StyleRegistry&);

@@ -21,6 +21,16 @@ class DensityBoundary {
   static constexpr std::size_t kNoParticle = ~std::size_t(0);
   virtual void add_density(const Simulation& sim, real x, real y, real z, std::size_t particle, real& rho,
                            real grad[3]) const = 0;
+  // Adds the wall's moment at q (memory index `particle`, as for add_density),
+  //   M = sum over the wall's fluid k of m_k gradW(q - x_k) (x) (x_k - q)
+  // (symmetric: xx, yy, zz, xy, xz, yz, in `moment`), with which a pressure varying through
+  // the wall's fluid pushes: a mirrored wall whose pressure rises with depth as the fluid's
+  // does (engine/fixes/dfsph.cpp). rho0 times engine/sph/wall_density.hpp's moments for a flat
+  // wall, A n n + B (1 - n n), with the part along the wall, B, weighed by `along` (the share
+  // of the wall's fluid beside the particle that lies below the free surface). A wall that
+  // does not say adds none (its pressure is the particle's own).
+  virtual void add_moment(const Simulation& /*sim*/, const real /*q*/[3], std::size_t /*particle*/, real /*along*/,
+                          real /*moment*/[6]) const {}
   // The wall's velocity at (x, y, z) over the current step, into `v`; false (and `v` left
   // alone) for a wall at rest. A density that is integrated in time (WCSPH's continuity
   // equation) sees the fluid approach the wall at its velocity relative to the wall.

@@ -154,4 +154,17 @@ MassEstimate file_mass(Simulation& sim, std::int64_t first_id, std::int64_t end_
 }
 
 
+double lattice_gradient_norm(double mass, const Kernels& K, double rho0) {
+  const double s = lattice_spacing(mass, K, rho0), h = K.h;
+  const int reach = static_cast<int>(std::ceil(h / s));
+  double sum = 0;
+  for (int k = -reach; k <= reach; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const double r2 = (i * i + j * j + k * k) * s * s;
+        if (r2 < h * h) sum += K.grad_factor(real(r2)) * r2;
+      }
+  return -mass / rho0 * sum / 3;
+}
+
 }  // namespace pbf

@@ -37,6 +37,12 @@ double lattice_spacing(double mass, const Kernels& kernels, double rest_density)
 // inside an infinite cubic lattice whose spacing gives `mass` the rest density.
 double lattice_gradient_sum(double mass, const Kernels& kernels, double rest_density);
 
+// kappa = -1/3 sum_j V_j g(r_j) r_j^2 over that lattice, V_j = m / rho0 and gradW = g(r) r_vec:
+// the SPH gradient of a linear field there, sum_j V_j (p_j - p_i) gradW_ij, is kappa times its
+// gradient (0.950 at h = 2s). A solver's pressure that moves the fluid through this sum
+// reports kappa p: the pressure whose exact gradient does the same (pbf, dfsph).
+double lattice_gradient_norm(double mass, const Kernels& kernels, double rest_density);
+
 // The density a particle of a lattice's first layer (at spacing/2 from a flat wall) misses:
 // the sum over the lattice sites behind the wall.
 double lattice_wall_density(double mass, const Kernels& kernels, double rest_density);

@@ -255,6 +255,23 @@ void SmoothingSums(const PairInput& in, std::size_t begin, std::size_t end, cons
   }
 }
 
+void DivergenceSums(const PairInput& in, std::size_t begin, std::size_t end, const real* ux, const real* uy,
+                    const real* uz, real* out) {
+  const D d;
+  const KernelVectors K(in.kernels);
+  for (std::size_t i = begin; i < end; ++i) {
+    const V uxi = hn::Set(d, ux[i]), uyi = hn::Set(d, uy[i]), uzi = hn::Set(d, uz[i]);
+    Sum sum;
+    for_neighbor_vectors(in, i, masses(in), in.uniform_mass, [&](std::size_t v, const Neighbors& nb) {
+      const V along = hn::Add(hn::Add(hn::Mul(hn::Sub(uxi, hn::GatherIndex(d, ux, nb.j)), nb.dx),
+                                      hn::Mul(hn::Sub(uyi, hn::GatherIndex(d, uy, nb.j)), nb.dy)),
+                              hn::Mul(hn::Sub(uzi, hn::GatherIndex(d, uz, nb.j)), nb.dz));
+      sum.add(v, hn::Mul(hn::Mul(nb.weight, K.grad_factor(nb.r2)), along));
+    });
+    out[i] = sum.total();
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace pbf
 HWY_AFTER_NAMESPACE();
@@ -282,6 +299,7 @@ HWY_EXPORT(ConstraintCorrections);
 HWY_EXPORT(CurlSums);
 HWY_EXPORT(GradientSums);
 HWY_EXPORT(SmoothingSums);
+HWY_EXPORT(DivergenceSums);
 
 void density_sums(const PairInput& in, std::size_t begin, std::size_t end, real* rho) {
   HWY_DYNAMIC_DISPATCH(DensitySums)(in, begin, end, rho);
@@ -311,6 +329,11 @@ void gradient_sums(const PairInput& in, std::size_t begin, std::size_t end, cons
 void smoothing_sums(const PairInput& in, std::size_t begin, std::size_t end, const real* volume, const real* vx,
                     const real* vy, const real* vz, real* dx, real* dy, real* dz) {
   HWY_DYNAMIC_DISPATCH(SmoothingSums)(in, begin, end, volume, vx, vy, vz, dx, dy, dz);
+}
+
+void divergence_sums(const PairInput& in, std::size_t begin, std::size_t end, const real* ux, const real* uy,
+                     const real* uz, real* out) {
+  HWY_DYNAMIC_DISPATCH(DivergenceSums)(in, begin, end, ux, uy, uz, out);
 }
 
 }  // namespace pbf

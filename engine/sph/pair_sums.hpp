@@ -47,6 +47,11 @@ void constraint_sums(const PairInput& in, std::size_t begin, std::size_t end, re
 void constraint_corrections(const PairInput& in, std::size_t begin, std::size_t end, const real* lambda, real inv_rho0,
                             real scorr_scale, real inv_wdq, int scorr_n, real* dx, real* dy, real* dz);
 
+// The rate at which a velocity field u changes the density (the continuity equation's sum):
+// out_i = sum_j m_j (u_i - u_j) . gradW_ij.
+void divergence_sums(const PairInput& in, std::size_t begin, std::size_t end, const real* ux, const real* uy,
+                     const real* uz, real* out);
+
 // The sums below weigh neighbour j by its volume V_j = m_j / rho_j (`volume`; the masses of
 // PairInput are not read).
 

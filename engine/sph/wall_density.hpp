@@ -40,6 +40,16 @@ class HalfSpaceWall {
     const real share = fraction(-z - delta_, slope);  // the mirror point, at z -> -z
     return 1 - share;
   }
+  // The moments of the wall's fluid, for a pressure that varies through it (the hydrostatic
+  // pressure a mirrored wall carries, engine/fixes/dfsph.cpp): with q = y - x the vector from
+  // the particle to a point y of the wall's fluid and n the wall's normal,
+  //   integral over the wall's fluid of gradW(x - y) (x) q dV = A(d) n n + B(d) (1 - n n),
+  //   A = -2 pi / 3 integral_z^h W'(r) (r^3 - z^3) dr,
+  //   B = -pi integral_z^h W'(r) (2 r^3 / 3 - z r^2 + z^3 / 3) dr,   z = d + delta,
+  // (1/2 each at z = 0; the whole space around x gives 1; B is f itself, by parts along the
+  // wall, so a wall's support along it is its density). The integrands are polynomials of
+  // degree 7: five Gauss-Legendre points are exact.
+  void moments(real d, real& normal, real& tangential) const;
   real delta() const { return delta_; }
   real kernel_radius() const { return h_; }
 

@@ -20,4 +20,20 @@ function solvers.wcsph(opts)
   if not fixed then pbf.fix("cfl", "cfl", {courant = opts.courant, align = opts.align}) end
 end
 
+-- The divergence-free SPH pipeline of -v solver=dfsph: dfsph (its two solves and its
+-- integrator), sph_viscosity (Laplacian, nu = 1e-3 m^2/s: numerical, it damps the settling of
+-- the lattice a scene starts from, which no solver here survives undamped; docs/physics.md,
+-- "DFSPH") and cfl (courant 0.4 on h / |v|max; the script's step is the largest). Options,
+-- each nil for the default: error, divergence_error, max_iterations (of both solves), nu (0:
+-- no viscosity), courant, align, fixed_dt.
+function solvers.dfsph(opts)
+  opts = opts or {}
+  pbf.fix("dfsph", "dfsph", {error = opts.error, divergence_error = opts.divergence_error,
+                             max_iterations = opts.max_iterations, divergence_max_iterations = opts.max_iterations})
+  local nu = opts.nu or 1e-3
+  if nu > 0 then pbf.fix("viscosity", "sph_viscosity", {kind = "laplacian", nu = nu}) end
+  local fixed = flag(opts.fixed_dt, false, "fixed_dt")
+  if not fixed then pbf.fix("cfl", "cfl", {courant = opts.courant or 0.4, align = opts.align}) end
+end
+
 return solvers

@@ -95,6 +95,13 @@ WCSPH_PIPE = {
     "cfl": 'pbf.fix("cfl", "cfl", {%s})',
 }
 
+DFSPH_SCENE = PBF_SCENE
+DFSPH_PIPE = {
+    "gravity": 'pbf.fix("gravity", "gravity", {%s})',
+    "dfsph": 'pbf.fix("dfsph", "dfsph", {%s})',
+    "box": 'pbf.fix("walls", "box", {%s})',
+}
+
 # Extra fixes of the PBF pipeline, with the parameters they always get (a tested parameter
 # replaces its namesake; testing 'interval' or 'every' drops the other).
 EXTRA = {
@@ -162,6 +169,10 @@ def style_script(style, pairs, extra_after=()):
         lines = WCSPH_SCENE + [("@" if s == style else "") + t % (params if s == style else "")
                                for s, t in WCSPH_PIPE.items()]
         return lines + ["pbf.run(2)"] + list(extra_after)
+    if style == "dfsph":
+        lines = DFSPH_SCENE + [("@" if s == style else "") + t % (params if s == style else "")
+                               for s, t in DFSPH_PIPE.items()]
+        return lines + ["pbf.run(2)"] + list(extra_after)
     if style == "front":
         return (PBF_SCENE + [t % "" for t in PBF_PIPE.values()]
                 + ['@pbf.compute("front", "front", {%s})' % params, "pbf.run(2)", 'print(pbf.value("front"))'])
@@ -226,6 +237,14 @@ NUMERIC = [
      "the magnitude g of the default c0 = 10 sqrt(2 |g| H): 0 gives c0 = 0 (no pressure); -1 is legal (a "
      "downward g, as the gravity fix writes it); 1e300 gives a c0 whose square overflows"),
     ("wcsph", "max_density_error", "num", "RRRRRA", [], "a threshold > 0; 1e300 never stops the run, legal"),
+    ("dfsph", "error", "num", "RRRRRR", [], "a tolerance in (0, 1]: 0 is never reached, a negative one is no "
+     "tolerance, 1e300 is no compression at all"),
+    ("dfsph", "divergence_error", "num", "RRRRRR", [], "a tolerance in (0, 1], as 'error'"),
+    ("dfsph", "min_iterations", "int", "RRRRRR", [], "a count in 1..10000"),
+    ("dfsph", "max_iterations", "int", "RRRRRR", [], "a cap in 1..10000: 0 is no solve"),
+    ("dfsph", "divergence_min_iterations", "int", "RRRRRR", [], "a count in 1..10000"),
+    ("dfsph", "divergence_max_iterations", "int", "RRRRRR", [], "a cap in 1..10000: 0 is no solve"),
+    ("dfsph", "relaxation", "num", "RRRRRR", [], "a Jacobi relaxation in (0, 1]"),
     ("sph_viscosity", "alpha", "num", "RRRARR", [], "0 is no viscosity (legal); 1e300 blows any step up"),
     ("sph_viscosity", "nu", "num", "RRRARR", [("kind", '"laplacian"')], "0 is an inviscid fluid; 1e300 m^2/s "
      "is no fluid"),
@@ -316,6 +335,8 @@ NON_NUMERIC = [
     ("wcsph", "eos", "string", [("empty", '""', "R"), ("capital", '"Tait"', "R"), ("linear", '"linear"', "A")]),
     ("wcsph", "density", "string", [("empty", '""', "R"), ("continuity", '"continuity"', "A")]),
     ("wcsph", "negative_pressure", "bool", [("true", "true", "A")]),
+    ("dfsph", "divergence", "bool", [("false", "false", "A")]),
+    ("dfsph", "warm_start", "bool", [("false", "false", "A")]),
     ("sph_viscosity", "kind", "string", [("empty", '""', "R"), ("xsph", '"xsph"', "R"),
                                          ("laplacian", '"laplacian"', "A")]),
     ("dump/text", "path", "string", [("empty", '""', "R"), ("nostar", '"out/f.txt"', "R"),
@@ -740,6 +761,22 @@ def gen_lua_rules(g):
     add("pipe_wcsph_without_leapfrog", "wcsph without an integrator: refused at the start of the run",
         scene + ['pbf.fix("gravity", "gravity", {})', 'pbf.fix("wcsph", "wcsph", {})', 'pbf.fix("walls", "box", {})',
                  "pbf.run(1)"], "refused", "file", "wcsph")
+    dpipe = [t % "" for t in DFSPH_PIPE.values()]
+    add("pipe_dfsph_beside_wcsph", "a wcsph beside a dfsph: refused (both are the pressure solver)",
+        scene + dpipe + ['@pbf.fix("wcsph", "wcsph", {})', "pbf.run(1)"], "refused", "file", "pressure solver")
+    add("pipe_dfsph_beside_pbf", "a pbf beside a dfsph: refused (both integrate time)",
+        scene + dpipe + ['@pbf.fix("pbf", "pbf", {})', "pbf.run(1)"], "refused", "file", "time integration")
+    add("pipe_dfsph_beside_leapfrog", "a dfsph beside a leapfrog: refused (both integrate time)",
+        wscene[:4] + ['pbf.fix("integrator", "leapfrog", {})', '@pbf.fix("dfsph", "dfsph", {})', "pbf.run(1)"],
+        "refused", "file", "time integration")
+    add("pipe_dfsph_min_above_max", "dfsph with min_iterations above max_iterations: refused, naming both",
+        scene + ['@pbf.fix("dfsph", "dfsph", {min_iterations = 5, max_iterations = 3})', "pbf.run(1)"],
+        "refused", "file", "min_iterations")
+    add("pipe_dfsph_step_beyond_cfl", "dfsph at a step of 0.5 s: the first step's velocity would carry "
+        "particles past their kernel; refused at step 1 naming the CFL bound",
+        scene[:2] + ["pbf.timestep(0.5)"] + scene[3:] + dpipe + ["@pbf.run(3)"], "refused", "file",
+        "CFL bound")
+    add("pipe_dfsph_runs", "gravity, dfsph, the box: legal", scene + dpipe + ["pbf.run(3)"], "accepted", "line")
     add("pipe_unfix_then_add", "unfix then add the same id: legal",
         scene + pipe + ['pbf.unfix("pbf")', 'pbf.fix("pbf", "pbf", {iterations = 2})', "pbf.run(1)"],
         "accepted", "line")

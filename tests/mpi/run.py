@@ -16,6 +16,8 @@ Cases:
   identical_wcsph  scenarios/dambreak.lua with WCSPH (leapfrog, wcsph, sph_viscosity, cfl)
               likewise: frames, dump/image's pictures and the thermo CSV (the front, the
               gauge at the back wall).
+  identical_dfsph  scenarios/dambreak.lua with DFSPH (dfsph, sph_viscosity, cfl) likewise, and
+              scenarios/spheric_dambreak.lua at 5 cm with DFSPH: probes.csv and thermo.csv.
   identical_solid  scenarios/spheric_dambreak.lua at 5 cm (PBF, the box obstacle across the
               ranks' boundaries, its load in thermo, pressure probes and gauges): probes.csv and
               thermo.csv.
@@ -250,6 +252,20 @@ def identical_wcsph(args, work):
                  "images": 0.05}
     _, frames = same_outputs(args, work, scenario, variables, ["thermo.csv", "image_00003.png"])
     print(f"WCSPH: {len(frames)} frames, the pictures and thermo.csv identical at 1, 2 and 3 ranks")
+
+
+def identical_dfsph(args, work):
+    scenarios = os.path.join(HERE, "..", "..", "scenarios")
+    variables = {"solver": "dfsph", "particles": 1500, "t_end": 0.15, "interval": 0.03, "restart_interval": 0,
+                 "images": 0.05}
+    _, frames = same_outputs(args, work, os.path.join(scenarios, "dambreak.lua"), variables,
+                             ["thermo.csv", "image_00003.png"])
+    spheric = os.path.join(work, "spheric")
+    os.makedirs(spheric, exist_ok=True)
+    same_outputs(args, spheric, os.path.join(scenarios, "spheric_dambreak.lua"),
+                 {"solver": "dfsph", "spacing": 0.05, "t_end": 0.6}, ["probes.csv", "thermo.csv"], least_frames=0)
+    print(f"DFSPH: the dam break's {len(frames)} frames, pictures and thermo.csv, and SPHERIC's pressure probes, "
+          "gauges and obstacle load, identical at 1, 2 and 3 ranks")
 
 
 def identical_solid(args, work):
@@ -519,7 +535,7 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--case", required=True,
-                        choices=["identical", "identical_flow", "identical_periodic", "identical_wcsph", "identical_solid", "identical_floating", "sources", "scene_file", "restart", "restart_wcsph",
+                        choices=["identical", "identical_flow", "identical_periodic", "identical_wcsph", "identical_dfsph", "identical_solid", "identical_floating", "sources", "scene_file", "restart", "restart_wcsph",
                                  "script_error",
                                  "rank_error", "per_particle", "signals"])
     args = parser.parse_args()
