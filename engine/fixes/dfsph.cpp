@@ -41,7 +41,9 @@
 // at least min_iterations, and the velocities move by dt a_i of the pressure it reached. A
 // particle with less than kSparse of a full neighbourhood (walls counted by their density's
 // share) is at a free surface: its divergence is left as it is (the reference's rule, which
-// keeps spray from sticking). Each solve starts from the pressure the last step ended with
+// keeps spray from sticking), and it carries no divergence pressure (its factor, over few
+// neighbours, is large: a drop near the SPHERIC obstacle took its neighbours' whole push and
+// was thrown at 300 m/s). Each solve starts from the pressure the last step ended with
 // (warm start; in the fields "dfsph_pressure" and "dfsph_divergence_pressure", so restarts
 // continue exactly). The field "pressure" is kappa rho^2 (pi + pi_v): the two solves' pressure,
 // times the lattice's gradient norm (engine/sph/mass.hpp; 0.950 at h = 2s), so that its exact
@@ -336,7 +338,7 @@ class DivergenceFreeSph : public Fix {
         const real violation = pi[i] > 0 ? std::fabs(r) : (r < 0 ? -r : 0);
         if (violation > 0 && !(divergence && sparse_[i])) sum.add(double(violation));
         const real updated = pi[i] - step_factor * r * factor_[i];
-        next[i] = updated > 0 ? updated : 0;
+        next[i] = updated > 0 && !(divergence && sparse_[i]) ? updated : 0;
       }
     });
     const std::size_t all = sim.global_count();

@@ -47,6 +47,7 @@ THRESHOLD = 0.02   # m
 SMOOTH = 0.005     # s, running mean for the smoothed peaks
 RISE = 2000.0      # Pa: P1's rise, the first time it exceeds this
 PLATEAU = (0.6, 1.0)  # s: P1's mean over this window, after the impact
+IMPULSES = [(0.35, 0.60), (0.35, 1.0)]  # s: P1's impulse over the first impact, and to 1 s
 
 
 def read_csv(path):
@@ -94,6 +95,16 @@ def running_mean(t, y, width):
 def window_mean(t, y, t0, t1):
     m = (t >= t0) & (t <= t1) & np.isfinite(y)
     return float(np.mean(y[m])) if m.any() else math.nan
+
+
+def impulse(t, p, t0, t1):
+    """The integral of p over [t0, t1] (Pa s), trapezoids on the samples, the ends interpolated."""
+    m = (t > t0) & (t < t1) & np.isfinite(p)
+    if not m.any() or t[0] > t0 or t[-1] < t1:
+        return math.nan
+    tt = np.concatenate([[t0], t[m], [t1]])
+    pp = np.concatenate([[np.interp(t0, t, p)], p[m], [np.interp(t1, t, p)]])
+    return float(np.sum((pp[1:] + pp[:-1]) * np.diff(tt)) / 2)
 
 
 def peak(t, p, t_max):
@@ -145,6 +156,7 @@ def main():
         ref["arrival"][lab] = arrival(tm, meas[col], wet, threshold)
     ref["rise"] = arrival(tm, meas["p1_Pa"], False, RISE)
     ref["plateau"] = window_mean(tm, meas["p1_Pa"], *PLATEAU)
+    ref["impulse"] = [impulse(tm, meas["p1_Pa"], *w) for w in IMPULSES]
     for lab, col in PRESSURES:
         ref["peak"][lab] = peak(tm, meas[col], t_max)
         ref["smooth"][lab] = peak(tm, running_mean(tm, meas[col], SMOOTH), t_max)
@@ -172,6 +184,7 @@ def main():
             r["bias"][lab] = np.mean(diff) if m.any() else math.nan
         r["rise"] = arrival(t, sim["P.P1"], False, RISE) if "P.P1" in sim else math.nan
         r["plateau"] = window_mean(t, sim["P.P1"], *PLATEAU) if "P.P1" in sim else math.nan
+        r["impulse"] = [impulse(t, sim["P.P1"], *w) if "P.P1" in sim else math.nan for w in IMPULSES]
         for lab, col in PRESSURES:
             key = "P." + lab
             if key in sim:
@@ -234,6 +247,15 @@ def main():
             verdict, cell_p, cell_t, cell_s, cell_r, cell_m = "n/a", "n/a", "n/a", "n/a", "n/a", "n/a"
         out.append(f"| {r['label']} | {cell_r} | {cell_p} | {cell_t} | {cell_s} | {cell_m} | "
                    + " | ".join(pk(r["peak"][q]) for q in ("P2", "P3", "P4")) + f" | {verdict} |")
+    out.append("")
+    out.append("P1's impulse, the integral of its pressure (Pa s), over the first impact and to 1 s; in brackets, "
+               "against the measured one (target: within 10%).\n")
+    out.append("| run | " + " | ".join(f"{a:g}-{b:g} s" for a, b in IMPULSES) + " |")
+    out.append("|---|" + "---|" * len(IMPULSES))
+    out.append("| measured | " + " | ".join(fmt(x, ".0f") for x in ref["impulse"]) + " |")
+    for r in runs:
+        out.append(f"| {r['label']} | " + " | ".join(
+            f"{fmt(x, '.0f')} ({fmt(100 * (x / y - 1), '+.0f')}%)" for x, y in zip(r["impulse"], ref["impulse"])) + " |")
     if any(r["info"] for r in runs):
         out.append("")
         out.append("| run | spacing (m) | particles | steps | wall time (s) | simulated to (s) |")
