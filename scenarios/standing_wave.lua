@@ -21,7 +21,8 @@
 -- dt (default 0.4 h / sqrt(2 g H)), csv (thermo CSV, default none), out (frame directory,
 -- default none), solver ("pbf", the default, "wcsph": share/lua/solvers.lua, with its alpha,
 -- density, diffusion and negative_pressure, or "dfsph", with its error, divergence_error,
--- max_iterations and nu).
+-- max_iterations and nu: default 1e-4 m^2/s here, whose own decay of the wave is 1% a period
+-- against solvers.lua's 1e-3's 9%, docs/validation/dfsph.md).
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../share/lua/?.lua;" .. package.path
 local g = 9.81
@@ -54,7 +55,7 @@ if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha, density = var.density, diffusion = var.diffusion,
                               negative_pressure = var.negative_pressure}
 elseif solver == "dfsph" then
-  require("solvers").dfsph{error = var.error, divergence_error = var.divergence_error, nu = var.nu,
+  require("solvers").dfsph{error = var.error, divergence_error = var.divergence_error, nu = var.nu or 1e-4,
                            max_iterations = var.max_iterations}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations})

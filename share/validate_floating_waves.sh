@@ -3,7 +3,8 @@
 # (2015): share/validation/floating_waves.lua (a quasi-2D slab flume, second-order piston waves
 # H = 0.10 m, T = 1.2 s, depth 0.4 m, the box 1.8 m from the paddle) with WCSPH and PBF at spacing
 # 0.02 m (PBF also with the paddle starting 1.5 s earlier), WCSPH with the paddle making H = 0.115 m
-# (for 0.10 m at the box's place), and each solver without the box for the incident wave there;
+# (for 0.10 m at the box's place), DFSPH at 0.02 m, and each solver without the box for the incident
+# wave there;
 # share/validation/plot_floating_waves.py compares heave, surge and roll with the measured ones.
 # Writes docs/validation/floating_waves.md and floating_waves.png, with the date and machine.
 #
@@ -55,6 +56,8 @@ run pbf "PBF, spacing 0.02 m, paddle at 1.5 s" solver=pbf
 run wcsph_h115 "WCSPH, H = 0.115 m at the paddle" solver=wcsph height=0.115
 run wcsph_nobox "WCSPH, no box" solver=wcsph box=false t_end=5
 run pbf_nobox "PBF, no box" solver=pbf box=false t_end=5
+run dfsph "DFSPH, spacing 0.02 m" solver=dfsph
+run dfsph_nobox "DFSPH, no box" solver=dfsph box=false t_end=5
 if [ -n "${FINE:-}" ]; then run wcsph_fine "WCSPH, spacing 0.0125 m" solver=wcsph spacing=0.0125; fi
 
 "$py" share/validation/plot_floating_waves.py --png "$out/floating_waves.png" --table "$work/tables.md" "${nobox[@]}" "${runs[@]}"

@@ -40,9 +40,10 @@ const std::int64_t kIterations = 4;     // pbf's default
 // The solver as share/lua/solvers.lua assembles it: pbf with its defaults (`iterations` for the
 // convergence check below), or WCSPH (leapfrog, wcsph with sound speed c0, artificial
 // viscosity, cfl choosing each step under the script's).
-// DFSPH as solvers.lua has it too: dfsph at its tolerances (a tenth of them for the
-// convergence check: `iterations` twice the default), a Laplacian viscosity of 1e-3 m^2/s and
-// cfl with courant 0.4.
+// DFSPH as solvers.lua has it too: dfsph at its tolerances, a Laplacian viscosity of 1e-3 m^2/s
+// and cfl with courant 0.4 (0.2 for the convergence check, `iterations` twice the default: its
+// compression is what a step's drift makes before the next solve removes it, so it falls with
+// the step, not with the tolerance).
 void add_solver(Simulation& sim, const std::string& solver, double c0, const GivenParams& wcsph = {},
                 const GivenParams& cfl = {}, std::int64_t iterations = kIterations) {
   if (solver == "pbf") {
@@ -50,10 +51,9 @@ void add_solver(Simulation& sim, const std::string& solver, double c0, const Giv
     return;
   }
   if (solver == "dfsph") {
-    const double tighter = iterations == kIterations ? 1 : 0.1;
-    sim.add_fix(fix("dfsph", "dfsph", {{"error", 1e-4 * tighter}, {"divergence_error", 1e-3 * tighter}}));
+    sim.add_fix(fix("dfsph", "dfsph", {}));
     sim.add_fix(fix("viscosity", "sph_viscosity", {{"kind", std::string("laplacian")}, {"nu", 1e-3}}));
-    sim.add_fix(fix("cfl", "cfl", {{"courant", 0.4}}));
+    sim.add_fix(fix("cfl", "cfl", {{"courant", iterations == kIterations ? 0.4 : 0.2}}));
     return;
   }
   GivenParams p = wcsph;
@@ -82,8 +82,20 @@ double elastic_energy(Simulation& sim, const std::string& solver, double c0) {
   return sum * c0 * c0 / gamma_tait;
 }
 
+// DFSPH's step ends between its kick and its drift: the velocity holds gravity's last kick,
+// the positions not yet the drift it makes (symplectic Euler). That integrator conserves
+// KE + PE + (dt/2) g sum_i m_i v_z,i (exactly, in a free fall: each step's kick adds
+// g^2 dt^2 / 2 to KE + PE, and takes it from the last term), so that is its energy here.
+double staggering(Simulation& sim, const std::string& solver) {
+  if (solver != "dfsph") return 0;
+  const auto& P = sim.particles();
+  double momentum = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) momentum += P.mass()[i] * P.vz()[i];
+  return sim.timestep() / 2 * g * momentum;
+}
+
 double energy(Simulation& sim, const std::string& solver, double c0) {
-  return value(sim, "ke") + value(sim, "pe") + elastic_energy(sim, solver, c0);
+  return value(sim, "ke") + value(sim, "pe") + elastic_energy(sim, solver, c0) + staggering(sim, solver);
 }
 
 // Every particle still there, finite and inside the domain.
@@ -249,9 +261,7 @@ TEST_P(ThinColumn, CollapsesWithoutGainingEnergy) {
   EXPECT_LT(centre, height / 2 / 4);  // the centre of mass's height
 }
 
-// (DFSPH's energy here rises 0.28% in the first steps: its state after a step holds the positions
-// before the drift its velocity makes, so kinetic energy leads potential by half a kick; open.)
-INSTANTIATE_TEST_SUITE_P(HardCases, ThinColumn, ::testing::Values("pbf", "wcsph"), solver_name);
+INSTANTIATE_TEST_SUITE_P(HardCases, ThinColumn, ::testing::Values("pbf", "wcsph", "dfsph"), solver_name);
 
 // A block 8 cm on a side at twice the rest density (particles of the rest-density mass of
 // spacing s = 1 cm packed at s / 2^(1/3); their SPH sum is 1.96 rho0), at rest in the middle
@@ -306,13 +316,15 @@ INSTANTIATE_TEST_SUITE_P(HardCases, CompressedBlock, ::testing::Values("pbf", "w
 // towards the nearer face, so the whole fluid presses into every face (U), edge (sqrt(2) U) and
 // corner (sqrt(3) U) at once; PBF's step keeps sqrt(3) U to 0.4 h. Walls: the box fix, or a
 // solid container the size of the domain. To t = 0.1 s: every particle kept inside the domain,
-// energy never above its start, and the density error for PBF as for the cube (less with 8
-// iterations, below 100%) and, for WCSPH, below 3 U / c0 + 0.05: linear acoustics superposes in
+// energy never above its start, and the density error for PBF and DFSPH as for the cube (less
+// with 8 iterations or half the Courant number, below 100%) and, for WCSPH, below 3 U / c0 + 0.05: linear acoustics superposes in
 // a corner the water hammers of three walls, U / c0 each, and a particle pressed into a corner
 // adds what SPH's walls get wrong there: their density is exact to about 2% of rho0 at edges
 // and corners (docs/physics.md, "box"), and a wall counts as fluid at rest density, so the
 // fluid beside it takes the whole compression. Measured 2026-11-26: PBF 21% (both walls), WCSPH
-// 24.9% (box) and 25.1% (solid) against 3 U / c0 = 22.6%.
+// 24.9% (box) and 25.1% (solid) against 3 U / c0 = 22.6%; 2026-11-29: DFSPH 93% (box), in the
+// second step, before its solve has turned the fluid (its first drift carries the start's
+// velocity unsolved).
 class FullBox : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FullBox, HoldsFluidPressedIntoEveryCornerAndFace) {
@@ -347,7 +359,10 @@ TEST_P(FullBox, HoldsFluidPressedIntoEveryCornerAndFace) {
 }
 
 INSTANTIATE_TEST_SUITE_P(HardCases, FullBox,
-                         // (DFSPH: 70% compression in the box, where its solves reach their caps and a tenth of
-                         // the tolerances does not lower it; 200% at the solid container's corners; open.)
-                         ::testing::Values("pbf_box", "pbf_solid", "wcsph_box", "wcsph_solid"),
+                         // (DFSPH in the solid container: 796% at its corners. The solid holds particles half
+                         // a spacing off, where its wall's pressure has not yet begun to push: the inner layers
+                         // press the outer ones onto a projection the solves cannot see, as in the box before
+                         // its quarter spacing (physics.md, "DFSPH at walls"). At a quarter spacing: 117%, and
+                         // the mesh container's resting column then jostles at 77 mm/s at an edge; open.)
+                         ::testing::Values("pbf_box", "pbf_solid", "wcsph_box", "wcsph_solid", "dfsph_box"),
                          solver_name);

@@ -79,8 +79,9 @@ class Box : public Fix, public DensityBoundary {
   std::vector<Stage> stages() const override {
     std::vector<Stage> stages;
     if (any_open_) stages.push_back(Stage::exchange);
-    if (restitution_ > 0) stages.push_back(Stage::predict);
-    stages.insert(stages.end(), {Stage::constraints, Stage::velocity_update});
+    if (restitution_ > 0 || project_once_) stages.push_back(Stage::predict);
+    if (!project_once_) stages.push_back(Stage::constraints);
+    stages.push_back(Stage::velocity_update);
     return stages;
   }
   const ParticleFlow* particle_flow() const override { return any_open_ ? &left_ : nullptr; }
@@ -112,18 +113,21 @@ class Box : public Fix, public DensityBoundary {
   std::vector<const char*> exclusive_jobs() const override { return {"walls at the domain faces"}; }
   DensityBoundary* density_boundary() override { return wall_density_ ? this : nullptr; }
 
-  // Only with restitution: the velocity each particle arrives with (within a step only).
+  // With restitution: the velocity each particle arrives with (within a step only). Under
+  // dfsph (set in init, from the pipeline), whose solves move velocities, not positions: the
+  // projection, once, right after its drift, so that the neighbours and the solves see the
+  // positions the step keeps.
   void predict(Simulation& sim) override {
     const auto& P = sim.particles();
-    const real* v[3] = {P.vx(), P.vy(), P.vz()};
-    for (int c = 0; c < 3; ++c) incoming_[c].assign(v[c], v[c] + P.size());
+    if (restitution_ > 0) {
+      const real* v[3] = {P.vx(), P.vy(), P.vz()};
+      for (int c = 0; c < 3; ++c) incoming_[c].assign(v[c], v[c] + P.size());
+    }
+    if (project_once_) project(sim);
   }
 
-  // In every constraint iteration, after pbf's correction; once under dfsph (set in init, from
-  // the pipeline), whose solves move velocities, not positions: the first puts them where they stay.
-  void constraint(Simulation& sim, int iteration) override {
-    if (iteration == 0 || !project_once_) project(sim);
-  }
+  // In every constraint iteration, after pbf's correction.
+  void constraint(Simulation& sim, int) override { project(sim); }
 
   // Positions back into the box, contact_ from each face.
   void project(Simulation& sim) {
@@ -255,7 +259,7 @@ class Box : public Fix, public DensityBoundary {
   bool wall_density_, no_slip_;
   bool viscous_no_slip_ = false;  // this run's: a Laplacian viscosity holds the no-slip walls
   bool contact_given_;
-  bool project_once_ = false;  // this run's (see constraint)
+  bool project_once_ = false;  // this run's: under dfsph (see predict)
   double contact_spacings_, contact_ = 0;  // in spacings, and in metres for this run
   std::vector<real> incoming_[3];
   bool open_[6] = {false, false, false, false, false, false}, any_open_ = false;  // faces x-, x+, y-, y+, z-, z+

@@ -264,7 +264,6 @@ class DivergenceFreeSph : public Fix {
     pi_.resize(P.size_with_ghosts());
     pi_next_.resize(P.size_with_ghosts());
     sim.update_ghosts({P.vx(), P.vy(), P.vz()});  // changed since the neighbour stage (solve, forces)
-    sim.update_ghost_positions();                // moved by the walls' first projection
     const real dt = real(sim.timestep()), rho0 = real(sim.rest_density());
     const real *x = P.x(), *y = P.y(), *z = P.z(), *vx = P.vx(), *vy = P.vy(), *vz = P.vz();
     const real* rho = rho_.data();
@@ -315,7 +314,6 @@ class DivergenceFreeSph : public Fix {
     const bool divergence = &solve == &divergence_;
     const real dt = real(sim.timestep()), rho0 = real(sim.rest_density());
     const real step_factor = real(omega_) / (dt * dt);
-    sim.update_ghost_positions();  // moved by the walls' first projection, after this solve's start
     real *ax = sim.scratch(0), *ay = sim.scratch(1), *az = sim.scratch(2);
     const PairInput pairs{sim.neighbors(), P.x(), P.y(), P.z(), P.mass(), sim.common_mass(), sim.kernels(), n};
 

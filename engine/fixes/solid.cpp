@@ -4,9 +4,10 @@
 //  - density: the wall counts as fluid at rest density behind its surface; its share f(x)
 //    of a particle's neighbourhood and grad f come from a map precomputed around the
 //    surface (engine/geometry/solid_map.hpp). The solver adds rho0 f and rho0 grad f;
-//  - projection: in every constraint iteration a particle that reached the wall is put back
-//    `contact_distance` spacings in front of its surface (half a spacing by default, the
-//    radius of the volume a particle stands for, as for the box); the path from where it
+//  - projection: in every constraint iteration (under dfsph once, after its drift) a particle
+//    that reached the wall is put back `contact_distance` spacings in front of its surface
+//    (half a spacing by default, the radius of the volume a particle stands for, as for the
+//    box under pbf and wcsph); the path from where it
 //    started the step is searched for the first contact, so a particle faster than a thin
 //    wall is thick stops at the near side instead of being pushed out of the far one;
 //  - after the velocity update, a particle on the wall loses its velocity into the wall and,

@@ -27,6 +27,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   SolidFix(const std::string& id, const Params& p);
 
   std::vector<Stage> stages() const override {
+    if (project_once_) return {Stage::external_forces, Stage::predict, Stage::velocity_update, Stage::end_of_step};
     return {Stage::external_forces, Stage::constraints, Stage::velocity_update, Stage::end_of_step};
   }
   Role role() const override { return Role::boundary; }
@@ -63,11 +64,11 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   void add_no_slip(const Simulation& sim, const real q[3], std::size_t particle, const real v[3],
                    real pull[3]) const override;
   void external_forces(Simulation& sim) override;
-  // In every constraint iteration, after pbf's correction; once under dfsph (set in init, from
-  // the pipeline), whose solves move velocities, not positions: the first puts them where they stay.
-  void constraint(Simulation& sim, int iteration) override {
-    if (iteration == 0 || !project_once_) project(sim);
-  }
+  // In every constraint iteration, after pbf's correction. Under dfsph (set in init, from the
+  // pipeline), whose solves move velocities, not positions: once, right after its drift, so that
+  // the neighbours and the solves see the positions the step keeps.
+  void constraint(Simulation& sim, int) override { project(sim); }
+  void predict(Simulation& sim) override { project(sim); }
   void velocity_update(Simulation& sim) override;
   void end_of_step(Simulation& sim) override;
 
@@ -147,7 +148,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   bool built_ = false;
   double built_for_[7] = {0, 0, 0, 0, 0, 0, 0};
   double spacing_ = 0, contact_spacings_ = 0;
-  bool project_once_ = false;  // this run's (see constraint)
+  bool project_once_ = false;  // this run's: under dfsph (see constraint)
   void project(Simulation& sim);
   std::vector<real> start_[3], start_distance_;
   std::int64_t started_step_ = -1;  // the step start_ and start_distance_ belong to

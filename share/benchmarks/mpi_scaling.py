@@ -20,7 +20,7 @@ that slow spells of a shared machine fall on all of them. Tables (Markdown on st
            rank's time includes waiting at each exchange for the slower one; the least is
            nearest the transfers' own cost), medians over the runs.
 
-    share/benchmarks/mpi_scaling.sh [--repeats 5] [--out docs/performance]
+    share/benchmarks/mpi_scaling.sh [--repeats 5] [--out docs/performance] [--solver dfsph]
 
 Open MPI as root needs OMPI_ALLOW_RUN_AS_ROOT(_CONFIRM); in containers
 OMPI_MCA_btl_vader_single_copy_mechanism=none: this script sets them.
@@ -52,6 +52,8 @@ def run(args, scene, ranks, threads, work):
     """One run: its timing table, with 'communication' (s, rank 0's) and 'load' added."""
     command = [args.binary, "run", "--log", "none", scaling.SCENARIO, "-v", f"init={scene}",
                "-v", f"out={os.path.join(work, 'frames')}", "--threads", str(threads)]
+    if args.solver != "pbf":
+        command += ["-v", f"solver={args.solver}"]
     if ranks > 1:
         command = [args.mpirun, "-q", "--bind-to", "none", "--oversubscribe", "-np", str(ranks)] + command
     done = subprocess.run(command, capture_output=True, text=True, env=environment(threads), cwd=work)
@@ -167,17 +169,22 @@ def main():
     parser.add_argument("--mpirun", default="mpirun")
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--out", nargs="?", const=os.path.join(scaling.REPO, "docs", "performance"))
+    parser.add_argument("--solver", choices=["pbf", "wcsph", "dfsph"], default="pbf",
+                        help="init_file.lua's solver; another measures the strong table and the profile "
+                        "only, into mpi_SOLVER.md")
     args = parser.parse_args()
     args.binary = scaling.check_binary(args.binary)
     with tempfile.TemporaryDirectory() as work:
         strong_text, two_rank_tables = strong(args, work)
-        parts = [strong_text, weak(args, work), profile(args, two_rank_tables)]
-    header = scaling.header_line(args.binary)
+        weak_text = weak(args, work) if args.solver == "pbf" else ""
+        parts = [strong_text, weak_text, profile(args, two_rank_tables)]
+    header = scaling.header_line(args.binary) + ("" if args.solver == "pbf" else f"; init_file.lua -v solver={args.solver}")
     text = "\n\n".join(p for p in [header] + parts if p) + "\n"
     print(text)
     if args.out:
         os.makedirs(args.out, exist_ok=True)
-        with open(os.path.join(args.out, "mpi.md"), "w") as f:
+        name = "mpi.md" if args.solver == "pbf" else f"mpi_{args.solver}.md"
+        with open(os.path.join(args.out, name), "w") as f:
             f.write("# Distributed runs: the original study's MPI tables\n\n" + text)
 
 

@@ -21,9 +21,12 @@ on both sides. Sub-commands:
   profile  the original study's seven phases at about 16,000 particles (17,280), at 1
            thread and at all: seconds per step and share. forces = external_forces;
            candidates = binning + reorder rows of the neighbour stage; neighbours = the rest
-           of that stage (the neighbour lists); iterations = constraints; vorticity and
-           viscosity = the vorticity and xsph rows; update = predict + velocity_update;
-           other = everything else (frames, thermo, checks, loop and setup).
+           of that stage (the neighbour lists); iterations = constraints (and dfsph's
+           divergence stage); vorticity and viscosity = the vorticity and xsph (or
+           sph_viscosity) rows; update = predict + velocity_update; other = everything else
+           (frames, thermo, checks, loop and setup).
+  strong and profile take --solver wcsph|dfsph (init_file.lua's -v solver=...; the files
+  then NAME_SOLVER.md and .png).
   size     throughput against N, from 8,000 to --max-particles (1,000,000) roughly
            doubling, fewer steps at large N: time per particle-step, the log-log slope of
            time per step against N, the ratio of time per particle-step at the largest N
@@ -197,21 +200,26 @@ def neighbour_split(stage, table):
 
 
 def phases(table, what):
-    """The original study's phases, seconds summed over the run; 'other' is the rest."""
+    """The original study's phases, seconds summed over the run; 'other' is the rest. The
+    iterations are the solver's repeated stages (pbf's constraints; dfsph's divergence and
+    constraints); a viscosity counts as viscosity in whichever stage it runs (dfsph's in
+    forces), the rest of the force stages as forces."""
     neighbour = stages_with(table, ("neighbo",))
-    constraints = stages_with(table, ("constraint",))
+    constraints = stages_with(table, ("constraint", "divergence"))
     if not neighbour or not constraints:
         names = ", ".join(s["name"] for s in table["stages"])
         fail(f"the timing table of {what} has no neighbour or constraints stage "
              f"(stages: {names})")
-    forces = stages_with(table, ("external", "force"))
+    force_stages = stages_with(table, ("external", "force"))
     update = stages_with(table, ("predict", "update"))
-    taken = neighbour + constraints + forces + update
+    taken = neighbour + constraints + update
     rows = [r for s in table["stages"] if s not in taken for r in s["rows"]]
+    viscosity = [r for r in rows if has(r["name"], ("xsph", "viscosity"))]
+    forces = [r for s in force_stages for r in s["rows"] if r not in viscosity]
     out = {"forces": total(forces, table), "iterations": total(constraints, table),
            "update": total(update, table),
            "vorticity": total([r for r in rows if has(r["name"], ("vorticity",))], table),
-           "viscosity": total([r for r in rows if has(r["name"], ("xsph", "viscosity"))], table)}
+           "viscosity": total(viscosity, table)}
     out["candidates"], out["neighbours"] = neighbour_split(neighbour[0], table)
     out["other"] = table["wall"] - sum(out.values())
     return out
@@ -266,11 +274,14 @@ with open(sys.argv[1], "w") as f:
 """
 
 
+SOLVER = []  # -v solver=NAME for init_file.lua, from --solver (strong, profile)
+
+
 def run_engine(binary, scene, threads, work, extra=()):
     """Run one scene (extra: more arguments, such as -v NAME=VALUE); its timing table, with
     'peak_bytes' (the run's peak RSS) added."""
     cmd = [binary, "run", *log_option(binary), SCENARIO, "-v", f"init={scene}",
-           "-v", f"out={os.path.join(work, 'frames')}", "--threads", str(threads), *extra]
+           "-v", f"out={os.path.join(work, 'frames')}", "--threads", str(threads), *SOLVER, *extra]
     what = f"{binary} on {os.path.basename(scene)} with {plural(threads, 'thread')}"
     stats = os.path.join(work, "rusage.txt")
     with tempfile.TemporaryFile("w+", dir=work) as log:
@@ -346,6 +357,7 @@ def emit(args, name, text, plot):
     print(text + "\n", flush=True)
     if args.out:
         os.makedirs(args.out, exist_ok=True)
+        name += "" if getattr(args, "solver", "pbf") == "pbf" else "_" + args.solver
         with open(os.path.join(args.out, name + ".md"), "w") as f:
             f.write(f"{args.header}\n\n{text}\n")
         plt = pyplot()
@@ -796,6 +808,9 @@ def add_options(p, name):
                        help="threads (compare and mesh: 2 by default; size: all cores)")
     if name in ("strong", "weak", "profile", "all"):
         p.add_argument("--max-threads", type=positive, help="most threads (default: nproc)")
+    if name in ("strong", "profile"):
+        p.add_argument("--solver", choices=["pbf", "wcsph", "dfsph"], default="pbf",
+                       help="init_file.lua's solver (default pbf); another writes NAME_SOLVER.md/.png")
     if name in ("size", "all"):
         p.add_argument("--max-particles", type=positive, help="largest count (default 1,000,000)")
         p.add_argument("--double-binary", help="a double-precision build: adds its bytes per particle")
@@ -828,6 +843,9 @@ def main(argv=None):
     if args.out or args.command == "all":
         pyplot()  # fail now, not after the runs, where matplotlib is missing
     args.header = header_line(check_binary(args.binary))
+    if getattr(args, "solver", "pbf") != "pbf":
+        SOLVER.extend(["-v", f"solver={args.solver}"])
+        args.header += f"; init_file.lua -v solver={args.solver}"
     print(args.header + "\n", flush=True)
     load = os.getloadavg()[0]
     if load > 0.5:

@@ -34,7 +34,7 @@
 -- floating_waves.md); WCSPH's box was at rest by 1.5 s.
 -- With -v box=false there is no box, and a gauge at the box's x records the incident wave.
 --
---   pbfengine run share/validation/floating_waves.lua [-v solver=wcsph|pbf] [-v spacing=0.02]
+--   pbfengine run share/validation/floating_waves.lua [-v solver=wcsph|pbf|dfsph] [-v spacing=0.02]
 --                                                     [-v t_end=9.0] [-v box=true] [-v out=out/waves]
 --
 -- Outputs (time t_s from the paddle's start): out/body.csv, the `body` compute every
@@ -43,7 +43,7 @@
 -- out/gauges.csv, the gauges every `interval` s (depths, m); out/meta.txt, the set-up and the
 -- measured level as key = value lines.
 --
--- Variables: solver ("wcsph", the default, or "pbf"), spacing (m, default 0.02), support (kernel
+-- Variables: solver ("wcsph", the default, "pbf" or "dfsph"), spacing (m, default 0.02), support (kernel
 -- radius in spacings, default 2.5), width (m, default 4 spacings), t_end (s after the paddle's
 -- start, default 9.0), box (default true), out (default "out/waves"), height (H, m, default 0.10),
 -- period (T, s, default 1.2), depth (m, default 0.4), order (1 or 2, default 2: the wavemaker's),
@@ -53,17 +53,19 @@
 -- beach (m, where the 1:3.9 beach starts, default 4.8; 0: none), damping (m, a damping zone over
 -- the flume's last metres, default none), gauges (x list, m, default 1.0,3.0, plus 1.8 without
 -- the box), interval (s, default 1/60), dt (s, default 0.025 h / sqrt(g depth); WCSPH's cfl takes
--- smaller steps). wcsph: alpha (default 0.02), density_form (default "continuity"), diffusion
+-- smaller steps; DFSPH's cfl steps up to 0.4 h / sqrt(2 g depth), as scenarios/wave_flume.lua). wcsph: alpha (default 0.02), density_form (default "continuity"), diffusion
 -- (default 0): the flume's best waves (docs/validation/wave_flume.md). pbf: iterations (default 4),
--- one_sided (default true), xsph (default on), as scenarios/wave_flume.lua. images, movie, vtk
--- as in every scenario.
+-- one_sided (default true), xsph (default on), as scenarios/wave_flume.lua. dfsph: error,
+-- divergence_error, max_iterations, nu (share/lua/solvers.lua). images, movie, vtk as in every
+-- scenario.
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 package.path = here .. "../lua/?.lua;" .. package.path
 local flag = require("flag")
 
 local g = 9.81
 local solver = var.solver or "wcsph"
-assert(solver == "pbf" or solver == "wcsph", "solver must be pbf or wcsph, got " .. tostring(solver))
+assert(solver == "pbf" or solver == "wcsph" or solver == "dfsph",
+       "solver must be pbf, wcsph or dfsph, got " .. tostring(solver))
 local s = var.spacing or 0.02
 local h = (var.support or 2.5) * s
 local W = var.width or 4 * s
@@ -83,7 +85,7 @@ assert(release > 0.8 and release <= settle, "release must lie after 0.8 s (the b
 local interval = var.interval or 1 / 60
 local L, top = var.length or 6.6, d + 0.3
 local back = 0.1                          -- room behind the paddle's face
-local dt = var.dt or 0.025 * h / math.sqrt(g * d)
+local dt = var.dt or (solver == "dfsph" and 0.4 * h / math.sqrt(2 * g * d) or 0.025 * h / math.sqrt(g * d))
 
 -- Linear dispersion, then the wavemaker.
 local omega = 2 * math.pi / T
@@ -105,6 +107,9 @@ pbf.fix("gravity", "gravity", {acceleration = {0, 0, -g}})
 if solver == "wcsph" then
   require("solvers").wcsph{alpha = var.alpha or 0.02, density = var.density_form or "continuity", diffusion = var.diffusion or 0,
                            negative_pressure = var.negative_pressure}
+elseif solver == "dfsph" then  -- its steps by the CFL bound, this dt the largest
+  require("solvers").dfsph{error = var.error, divergence_error = var.divergence_error, nu = var.nu,
+                           max_iterations = var.max_iterations}
 else
   pbf.fix("pbf", "pbf", {iterations = var.iterations or 4, one_sided = flag(var.one_sided, true, "one_sided")})
   if (var.xsph or 1) ~= 0 then pbf.fix("xsph", "xsph", {}) end

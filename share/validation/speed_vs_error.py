@@ -1,14 +1,19 @@
 #!/usr/bin/env python3
-"""Speed against error: what each setting of PBF and WCSPH costs and what it buys.
+"""Speed against error: what each setting of PBF, WCSPH and DFSPH costs and what it buys.
 
 Runs the tall column of Martin & Moyce (1952) through scenarios/dambreak.lua (the runner and
 scores of share/validation/martin_moyce.py: a = 0.05715 m, 2a high, front = 99.5th percentile
 of x plus s/2, T <= 3), changing one setting at a time around the defaults:
 
     PBF    iterations 1 to 32; accuracy targets (error = mean compression 1%, 0.3%, 0.1%);
-           time step x1/2 and x2; resolution; precision (float against double)
+           time step x1/2 and x2; resolution; precision (double against the default float)
     WCSPH  sound speed x1/2 and x2 (its stiffness); Courant number x1/2 and x2; resolution;
            precision
+    DFSPH  density tolerance 0.1%, 0.03%, 0.001% (default 0.01%); divergence tolerance x10;
+           Courant number x1/2 and x2 (the scenario's step, PBF's, caps it: x2 doubles the cap too);
+           the Laplacian viscosity nu 1e-4 in place of 1e-3 (its explicit limit on the step, (h/2)^2
+           / (8 nu), binds at fine resolution), at the defaults' resolution and twice it;
+           resolution; precision
 
 and records for each run
 
@@ -26,8 +31,11 @@ against cost, each solver a curve through its own Pareto front, the overall fron
 (docs/validation/speed_vs_error.png unless -o).
 
     /usr/bin/python3 share/validation/speed_vs_error.py [--binary build/pbfengine]
-        [--float-binary build-float/pbfengine] [--across 16] [--repeats 3] [--only pbf|wcsph]
-        [--no-plot] [-o PNG]
+        [--double-binary build-double/pbfengine] [--across 16] [--repeats 3] [--only pbf|wcsph|dfsph]
+        [--merge TABLE] [--no-plot] [-o PNG]
+
+--merge takes the other solvers' rows from the table an earlier run printed (with --only, one
+solver is measured again and the table and plot still show all three).
 """
 import argparse
 import math
@@ -48,21 +56,50 @@ def variants(across):
     dt = 0.4 * 2 * s / math.sqrt(2 * mm.G * 2 * mm.A)  # dambreak.lua's PBF step, 0.4 h at the free-fall speed
     c0 = 10 * math.sqrt(2 * mm.G * 2 * mm.A)           # wcsph's default sound speed
     courant = 0.15                                     # cfl's default
-    runs = [("pbf", "default", "defaults (4 iterations)", across, "double", [])]
-    runs += [("pbf", "iterations", f"{k} iteration" + ("s" if k > 1 else ""), across, "double", [f"iterations={k}"]) for k in (1, 2, 8, 16, 32)]
-    runs += [("pbf", "target", f"error {e:g}", across, "double", [f"error={e}", "max_iterations=100"])
+    runs = [("pbf", "default", "defaults (4 iterations)", across, "float", [])]
+    runs += [("pbf", "iterations", f"{k} iteration" + ("s" if k > 1 else ""), across, "float", [f"iterations={k}"]) for k in (1, 2, 8, 16, 32)]
+    runs += [("pbf", "target", f"error {e:g}", across, "float", [f"error={e}", "max_iterations=100"])
              for e in (0.01, 0.003, 0.001)]
-    runs += [("pbf", "time step", f"dt x{f:g}", across, "double", [f"dt={f * dt}"]) for f in (0.5, 2)]
-    runs += [("pbf", "resolution", f"{n} across a", n, "double", []) for n in (8, 12, 24, 32) if n != across]
-    runs += [("pbf", "precision", "float", across, "float", [])]
+    runs += [("pbf", "time step", f"dt x{f:g}", across, "float", [f"dt={f * dt}"]) for f in (0.5, 2)]
+    runs += [("pbf", "resolution", f"{n} across a", n, "float", []) for n in (8, 12, 24, 32) if n != across]
+    runs += [("pbf", "precision", "double", across, "double", [])]
     w = ["solver=wcsph"]
-    runs += [("wcsph", "default", "defaults (c0 = 10 sqrt(2 g H), Courant 0.15)", across, "double", w)]
-    runs += [("wcsph", "stiffness", f"c0 x{f:g}", across, "double", w + [f"sound_speed={f * c0}"]) for f in (0.5, 2)]
-    runs += [("wcsph", "time step", f"Courant {f * courant:g}", across, "double", w + [f"courant={f * courant}"])
+    runs += [("wcsph", "default", "defaults (c0 = 10 sqrt(2 g H), Courant 0.15)", across, "float", w)]
+    runs += [("wcsph", "stiffness", f"c0 x{f:g}", across, "float", w + [f"sound_speed={f * c0}"]) for f in (0.5, 2)]
+    runs += [("wcsph", "time step", f"Courant {f * courant:g}", across, "float", w + [f"courant={f * courant}"])
              for f in (0.5, 2)]
-    runs += [("wcsph", "resolution", f"{n} across a", n, "double", w) for n in (8, 12, 24, 32) if n != across]
-    runs += [("wcsph", "precision", "float", across, "float", w)]
+    runs += [("wcsph", "resolution", f"{n} across a", n, "float", w) for n in (8, 12, 24, 32) if n != across]
+    runs += [("wcsph", "precision", "double", across, "double", w)]
+    d = ["solver=dfsph"]
+    runs += [("dfsph", "default", "defaults (error 0.01%, divergence 0.1%, Courant 0.4)", across, "float", d)]
+    runs += [("dfsph", "target", f"error {100 * e:g}%", across, "float", d + [f"error={e}", "max_iterations=1000"])
+             for e in (0.001, 0.0003, 0.00001)]
+    runs += [("dfsph", "divergence", "divergence 1%", across, "float", d + ["divergence_error=0.01"])]
+    runs += [("dfsph", "time step", "Courant 0.2", across, "float", d + ["courant=0.2"])]
+    runs += [("dfsph", "time step", "Courant 0.8, dt cap x2", across, "float", d + ["courant=0.8", f"dt={2 * dt}"])]
+    runs += [("dfsph", "viscosity", "nu 1e-4", across, "float", d + ["nu=1e-4"])]
+    runs += [("dfsph", "resolution", f"{n} across a", n, "float", d) for n in (8, 12, 24, 32) if n != across]
+    runs += [("dfsph", "viscosity", f"nu 1e-4, {2 * across} across a", 2 * across, "float", d + ["nu=1e-4"])]
+    runs += [("dfsph", "precision", "double", across, "double", d)]
     return runs
+
+
+def read_table(path):
+    """The rows of a table this script printed (for --merge)."""
+    rows = []
+    with open(path) as f:
+        for line in f:
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if len(cells) != 11 or cells[0] not in ("pbf", "wcsph", "dfsph"):
+                continue
+            solver, axis, label, across, precision, cost, compression, worst, rms, far, z = cells
+            rows.append(dict(solver=solver, axis=axis, label=label.removesuffix(" *"), across=int(across),
+                             precision=precision, cost=float(cost.split()[0]),
+                             compression=float(compression.rstrip("%")) / 100, worst=float(worst.rstrip("%")) / 100,
+                             rms=float(rms), far=float(far), Z=[float(v) for v in z.split(",")]))
+    if not rows:
+        sys.exit(f"speed_vs_error.py: no table rows in {path}")
+    return rows
 
 
 def pareto(points):
@@ -83,11 +120,12 @@ def order(coarse, mid, fine):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--binary", default=os.path.join(ROOT, "build", "pbfengine"))
-    ap.add_argument("--float-binary", default=os.path.join(ROOT, "build-float", "pbfengine"),
-                    help="a build with -DPBF_REAL=float (its runs are left out if it is missing)")
+    ap.add_argument("--double-binary", default=os.path.join(ROOT, "build-double", "pbfengine"),
+                    help="a build with -DPBF_REAL=double (its runs are left out if it is missing)")
     ap.add_argument("--across", type=int, default=16, help="particles across a at the defaults")
     ap.add_argument("--repeats", type=int, default=3, help="runs per variant; the cost is their median")
-    ap.add_argument("--only", choices=["pbf", "wcsph"], help="one solver's runs only")
+    ap.add_argument("--only", choices=["pbf", "wcsph", "dfsph"], help="one solver's runs only")
+    ap.add_argument("--merge", help="an earlier run's printed table: its rows of the solvers not run now are kept")
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("-o", "--output", default=os.path.join(ROOT, "docs", "validation", "speed_vs_error.png"))
     args = ap.parse_args()
@@ -101,9 +139,9 @@ def main():
         for solver, axis, label, across, precision, settings in variants(args.across):
             if args.only and solver != args.only:
                 continue
-            binary = args.float_binary if precision == "float" else args.binary
-            if precision == "float" and not os.access(binary, os.X_OK):
-                print(f"speed_vs_error.py: no float build at {binary}: its runs are left out", file=sys.stderr)
+            binary = args.double_binary if precision == "double" else args.binary
+            if precision == "double" and not os.access(binary, os.X_OK):
+                print(f"speed_vs_error.py: no double build at {binary}: its runs are left out", file=sys.stderr)
                 continue
             results = [mm.run(binary, 2, across, settings, work) for _ in range(args.repeats)]
             r = results[0]
@@ -112,6 +150,11 @@ def main():
                              compression=r.compression, worst=r.worst, rms=mm.rms(r.T, r.front, table),
                              far=mm.rms(r.T, r.far, table), Z=[mm.interpolate(r.T, r.front, t) for t in (1, 2, 3)]))
             print(f"  {solver} {label}: {cost:.1f} s per simulated s, RMS(Z) {rows[-1]['rms']:.3f}", file=sys.stderr)
+    if args.merge:
+        measured = {r["solver"] for r in rows}
+        rows = [r for r in read_table(args.merge) if r["solver"] not in measured] + rows
+        order_of = {"pbf": 0, "wcsph": 1, "dfsph": 2}
+        rows.sort(key=lambda r: order_of.get(r["solver"], 3))  # stable: each solver's own order kept
     best = set(pareto([(r["cost"], r["rms"]) for r in rows]))
     print(f"Tall column of Martin & Moyce, {len(table)} front points (T <= 3), t_end = {t_end:.3f} s; "
           f"cost = CPU seconds per simulated second at one thread, median of {args.repeats}; * = on the Pareto front "
@@ -124,7 +167,7 @@ def main():
         print(f"| {r['solver']} | {r['axis']} | {r['label']}{mark} | {r['across']} | {r['precision']} | {r['cost']:.1f} s "
               f"| {100 * r['compression']:.2f}% | {100 * r['worst']:.1f}% | {r['rms']:.3f} | {r['far']:.3f} "
               f"| {', '.join(f'{z:.3f}' for z in r['Z'])} |")
-    for solver in ("pbf", "wcsph"):
+    for solver in ("pbf", "wcsph", "dfsph"):
         res = {r["across"]: r for r in rows if r["solver"] == solver and r["axis"] in ("default", "resolution")}
         trio = [args.across // 2, args.across, 2 * args.across]
         if all(n in res for n in trio):
@@ -143,7 +186,7 @@ def plot(rows, best, output):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
     for ax, key, name in ((axes[0], "rms", "RMS(Z) against Martin & Moyce"),
                           (axes[1], "compression", "mean compression (time average)")):
-        for solver, color in (("pbf", "tab:blue"), ("wcsph", "tab:red")):
+        for solver, color in (("pbf", "tab:blue"), ("wcsph", "tab:red"), ("dfsph", "tab:green")):
             own = [r for r in rows if r["solver"] == solver]
             if not own:
                 continue
@@ -155,7 +198,7 @@ def plot(rows, best, output):
             ax.plot([r["cost"] for r in front], [r[key] for r in front], color=color, lw=1)
         overall = [rows[i] for i in pareto([(r["cost"], r[key]) for r in rows])]
         ax.scatter([r["cost"] for r in overall], [r[key] for r in overall], s=90, facecolors="none",
-                   edgecolors="k", label="Pareto front (both solvers)")
+                   edgecolors="k", label="Pareto front (all solvers)")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("seconds per simulated second (one core)")
