@@ -1,7 +1,7 @@
 // Moving solids: keyframes interpolate as stated (linear, or a spline through the keys whose
 // velocity does not jump); the fluid in a container moving at constant speed behaves as in a
-// container at rest (Galilean invariance, both solvers); a wall moving into the fluid leaves no
-// particle moving into it relative to the wall (both solvers); a spinning no-slip cube drags
+// container at rest (Galilean invariance, all three solvers); a wall moving into the fluid leaves
+// no particle moving into it relative to the wall (all three solvers); a spinning no-slip cube drags
 // the fluid touching it at its surface speed; time-step control keeps a fast
 // wall's step below a fraction of h; a run with a moving solid continues bit for bit from a
 // restart; bad motions are refused with a message that names them.
@@ -37,6 +37,10 @@ MotionPtr along_x(std::vector<std::pair<double, double>> keys, Keyframes::Interp
 void add_solver(Simulation& sim, const std::string& solver) {
   if (solver == "pbf") {
     sim.add_fix(fix("pbf", "pbf"));
+  } else if (solver == "dfsph") {  // as share/lua/solvers.lua assembles it
+    sim.add_fix(fix("dfsph", "dfsph"));
+    sim.add_fix(fix("viscosity", "sph_viscosity", {{"kind", std::string("laplacian")}, {"nu", 1e-3}}));
+    sim.add_fix(fix("cfl", "cfl", {{"courant", 0.4}}));
   } else {
     sim.add_fix(fix("integrator", "leapfrog"));
     sim.add_fix(fix("wcsph", "wcsph"));
@@ -87,7 +91,7 @@ class MovingContainer : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(MovingContainer, CarriesTheFluidAsAContainerAtRest) {
   const std::string solver = GetParam();
-  const double U = 0.5, dt = solver == "pbf" ? 0.004 : 2e-4, end = 0.2;
+  const double U = 0.5, dt = solver == "wcsph" ? 2e-4 : 0.004, end = 0.2;
   auto make = [&](Simulation& sim, bool moving) {
     // The container inside the domain, none of its faces on a face of the domain.
     sim.set_domain(Domain{{-0.05, -0.05, -0.05}, {0.3, 0.15, 0.25}});
@@ -132,7 +136,7 @@ TEST_P(MovingContainer, CarriesTheFluidAsAContainerAtRest) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(BothSolvers, MovingContainer, ::testing::Values("pbf", "wcsph"));
+INSTANTIATE_TEST_SUITE_P(BothSolvers, MovingContainer, ::testing::Values("pbf", "wcsph", "dfsph"));
 
 // A piston (a box 4 spacings thick) moves at 0.3 m/s into a column at rest for 0.1 s: no
 // particle is left behind its face, and every particle touching the face moves away from it
@@ -145,7 +149,7 @@ TEST_P(Piston, PushesTheFluidWithItsSpeed) {
   Simulation sim;
   sim.set_domain(Domain{{0, 0, 0}, {0.3, 0.05, 0.2}});
   sim.set_kernel_radius(0.02);
-  sim.set_timestep(solver == "pbf" ? 0.002 : 2e-4);
+  sim.set_timestep(solver == "wcsph" ? 2e-4 : 0.002);
   const double lo[3] = {0.04, 0, 0}, hi[3] = {0.3, 0.05, 0.1}, v[3] = {0, 0, 0};
   add_lattice(sim, lo, hi, 0.01, v);
   sim.add_fix(fix("gravity", "gravity"));
@@ -173,7 +177,7 @@ TEST_P(Piston, PushesTheFluidWithItsSpeed) {
   EXPECT_NEAR(first_layer_vx / first_layer, U, 0.1 * U);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothSolvers, Piston, ::testing::Values("pbf", "wcsph"));
+INSTANTIATE_TEST_SUITE_P(BothSolvers, Piston, ::testing::Values("pbf", "wcsph", "dfsph"));
 
 // A cube spinning about its centre with a no-slip wall: every particle touching one of its
 // faces (more than a map cell from its edges, where the map is exact) moves along it with the wall's velocity
