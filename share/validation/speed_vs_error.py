@@ -87,7 +87,11 @@ def variants(across):
 def read_table(path):
     """The rows of a table this script printed (for --merge)."""
     rows = []
-    with open(path) as f:
+    try:
+        f = open(path)
+    except OSError as e:
+        sys.exit(f"speed_vs_error.py: --merge {path}: {e.strerror}")
+    with f:
         for line in f:
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
             if len(cells) != 11 or cells[0] not in ("pbf", "wcsph", "dfsph"):
@@ -132,6 +136,7 @@ def main():
     os.environ["OMP_NUM_THREADS"] = "1"  # the runs inherit it
     if args.repeats < 1:
         sys.exit("speed_vs_error.py: --repeats must be at least 1")
+    merged = read_table(args.merge) if args.merge else []  # before the runs: a bad file fails now
     table = mm.read_table(os.path.join(mm.DATA, "martin_moyce_1952_n2_2_front.csv"), 3.0)
     t_end = mm.COLUMNS[2][1] / math.sqrt(mm.G / mm.A)
     rows = []
@@ -152,7 +157,7 @@ def main():
             print(f"  {solver} {label}: {cost:.1f} s per simulated s, RMS(Z) {rows[-1]['rms']:.3f}", file=sys.stderr)
     if args.merge:
         measured = {r["solver"] for r in rows}
-        rows = [r for r in read_table(args.merge) if r["solver"] not in measured] + rows
+        rows = [r for r in merged if r["solver"] not in measured] + rows
         order_of = {"pbf": 0, "wcsph": 1, "dfsph": 2}
         rows.sort(key=lambda r: order_of.get(r["solver"], 3))  # stable: each solver's own order kept
     best = set(pareto([(r["cost"], r["rms"]) for r in rows]))
