@@ -11,6 +11,17 @@
 namespace pbf {
 
 void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<std::array<double, 3>>* velocity) {
+  std::vector<VtuArray> arrays;
+  if (velocity) {
+    if (velocity->size() != mesh.vertices.size())
+      throw Error(fmt::format("{}: {} velocities for {} vertices", path, velocity->size(), mesh.vertices.size()));
+    arrays.push_back({"velocity", 3, VtuType::Float64, velocity->data()});
+  }
+  write_vtp(path, mesh, arrays);
+}
+
+void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<VtuArray>& point_data,
+               const std::string& normals) {
   const std::size_t points = mesh.vertices.size(), polys = mesh.triangles.size();
   for (std::size_t t = 0; t < polys; ++t)
     for (std::uint32_t v : mesh.triangles[t])
@@ -23,11 +34,14 @@ void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vec
       fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
                   "NumberOfPolys=\"{}\">\n",
                   points, polys));
-  if (velocity) {
-    if (velocity->size() != points)
-      throw Error(fmt::format("{}: {} velocities for {} vertices", path, velocity->size(), points));
-    out.head("      <PointData Vectors=\"velocity\">\n");
-    out.declare("Float64", "velocity", 3, points * 3 * sizeof(double));
+  if (!point_data.empty()) {
+    std::string attributes;
+    for (const VtuArray& a : point_data)
+      if (a.components == 3 && a.name != normals && attributes.empty()) attributes = fmt::format(" Vectors=\"{}\"", xml_escape(a.name));
+    if (!normals.empty()) attributes += fmt::format(" Normals=\"{}\"", xml_escape(normals));
+    out.head(fmt::format("      <PointData{}>\n", attributes));
+    for (const VtuArray& a : point_data)
+      out.declare(type_name(a.type), a.name, a.components, points * a.components * type_size(a.type));
     out.head("      </PointData>\n");
   }
   out.head("      <Points>\n");
@@ -38,7 +52,7 @@ void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vec
   out.head("      </Polys>\n    </Piece>\n");
 
   static_assert(sizeof(mesh.vertices[0]) == 3 * sizeof(double), "vertices are packed x, y, z");
-  if (velocity) out.block(velocity->data(), points * 3 * sizeof(double));
+  for (const VtuArray& a : point_data) out.block(a.data, points * a.components * type_size(a.type));
   out.block(mesh.vertices.data(), points * 3 * sizeof(double));
   // The indices widened to Int64 (what VTK's own writers use) in chunks, not materialised.
   constexpr std::size_t kChunk = 1024;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/geometry/triangle_mesh.hpp"
+#include "engine/io/vtu.hpp"
 
 namespace pbf {
 
@@ -13,5 +14,9 @@ namespace pbf {
 // vertex: a body's point velocities) as PointData when given. Throws pbf::Error naming the
 // path if a triangle names a vertex the mesh does not have, or if the file cannot be written.
 void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<std::array<double, 3>>* velocity = nullptr);
+// The same with any PointData arrays (each vertices.size() * components values, interleaved);
+// the one named `normals`, if any, is declared as the vertices' normals (smooth shading).
+void write_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<VtuArray>& point_data,
+               const std::string& normals = "");
 
 }  // namespace pbf

@@ -12,13 +12,13 @@
 
 namespace pbf {
 
-namespace {
-
 const char* type_name(VtuType t) {
   return t == VtuType::Float32 ? "Float32" : t == VtuType::Float64 ? "Float64" : "Int64";
 }
 
 std::size_t type_size(VtuType t) { return t == VtuType::Float32 ? 4 : 8; }
+
+namespace {
 
 void check_array(const std::string& path, const VtuArray& a, std::size_t n) {
   if (a.name.empty()) throw Error(fmt::format("{}: a vtu array needs a name", path));

@@ -17,6 +17,8 @@
 namespace pbf {
 
 enum class VtuType { Float32, Float64, Int64 };
+const char* type_name(VtuType t);  // as VTK names it: "Float32", ...
+std::size_t type_size(VtuType t);  // bytes of one value
 
 struct VtuArray {
   std::string name;

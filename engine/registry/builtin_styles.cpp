@@ -22,6 +22,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_dump_text(r);
   register_dump_vtk(r);
   register_dump_image(r);
+  register_dump_surface(r);
   register_dump_movie(r);
   register_restart(r);
   register_sample(r);

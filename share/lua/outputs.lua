@@ -2,6 +2,9 @@
 --   images=T     PNG pictures every T simulated seconds, OUT/image_00000.png, ...
 --   movie=PATH   an mp4 of pictures every movie_interval seconds (default 0.02)
 --   vtk=T        ParaView frames every T seconds, OUT/vtk/frame_*.vtu and OUT/vtk/frame.pvd
+--   surface=T    the fluid's surface every T seconds (dump/surface): OUT/surface/surface_*.vtp
+--                with OUT/surface/surface.pvd for ParaView and surface_*.ply for Blender;
+--                surface_kernel picks the field (anisotropic, isotropic, spheres)
 --   outputs.frames(out, restart_default): the text frames and restarts (below)
 -- `view` holds the dump/image parameters (camera, colour field and scale) that pictures and
 -- the movie share. A scenario loads it with
@@ -21,6 +24,10 @@ function outputs.add(out, view)
     pbf.fix("movie", "dump/movie", picture{path = var.movie, interval = var.movie_interval or 0.02})
   end
   if var.vtk then pbf.fix("vtk", "dump/vtk", {path = out .. "/vtk/frame_*.vtu", interval = var.vtk}) end
+  if var.surface then
+    pbf.fix("surface", "dump/surface", {path = out .. "/surface/surface_*.vtp", also = {"ply"}, interval = var.surface,
+                                        kernel = var.surface_kernel})
+  end
 end
 
 -- Text frames every `interval` seconds (-v interval, default 0.02) in OUT, and restarts every

@@ -4,7 +4,7 @@
 -- ranks (all of which start inside the column), and the boxes are rebalanced as it goes.
 -- Writes OUT/f_*.txt (dump/text: id, position, velocity, the density and the vorticity's
 -- magnitude, which read neighbours), OUT/vtk (ParaView frames: .vtu, or .pvtu and pieces on
--- several ranks, and frame.pvd), OUT/probes.csv (probes, gauges, extent, a percentile)
+-- several ranks, and frame.pvd), OUT/surface (dump/surface's meshes), OUT/probes.csv (probes, gauges, extent, a percentile)
 -- and OUT/thermo.csv.
 -- -v read=FILE continues from a restart, -v save=FILE writes one at the end; -v steps=N runs
 -- until step N (default 250).
@@ -38,6 +38,7 @@ local out = var.out or "out/mpi"
 pbf.fix("dump", "dump/text", {path = out .. "/f_*.txt", every = 50,
                               fields = {"id", "position", "velocity", "density", "vorticity_magnitude"}})
 pbf.fix("vtk", "dump/vtk", {path = out .. "/vtk/frame_*.vtu", every = 50, fields = {"id", "velocity", "density"}})
+pbf.fix("surface", "dump/surface", {path = out .. "/surface/surface_*.ply", every = 100, fields = {"velocity", "density"}})
 -- Probes and gauges, each point measured by the rank whose box holds it.
 pbf.compute("vel", "probe", {field = "velocity", points = {{0.1, 0.1, 0.05}, {0.4, 0.1, 0.02}, {0.75, 0.05, 0.1}}})
 pbf.compute("rho", "probe", {field = "density", points = {{0.1, 0.1, 0.05}, {0.35, 0.12, 0.03}}})

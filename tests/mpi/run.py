@@ -91,9 +91,9 @@ def fail(message):
 
 def same_outputs(args, work, script, variables, files, least_frames=5, rank_counts=(1, 2, 3)):
     """Runs at each of rank_counts (1 first); fails unless every file the 1-process run wrote in
-    its output directory (text frames, CSVs, pictures; not its subdirectories) has the same
-    bytes in the others', and `files` are among them. Returns the 1-process output directory
-    and its frames."""
+    its output directory (text frames, CSVs, pictures; of its subdirectories, the surfaces'
+    surface/) has the same bytes in the others', and `files` are among them. Returns the
+    1-process output directory and its frames."""
     outputs = {}
     for ranks in rank_counts:
         out = os.path.join(work, f"r{ranks}")
@@ -106,6 +106,9 @@ def same_outputs(args, work, script, variables, files, least_frames=5, rank_coun
     if len(frames) < least_frames:
         fail(f"expected at least {least_frames} frames, found {frames}")
     written = sorted(f for f in os.listdir(outputs[1]) if os.path.isfile(os.path.join(outputs[1], f)))
+    surfaces = os.path.join(outputs[1], "surface")
+    if os.path.isdir(surfaces):
+        written += sorted(os.path.join("surface", f) for f in os.listdir(surfaces))
     for name in files:
         if name not in written:
             fail(f"the 1-process run wrote no {name}")
@@ -249,22 +252,23 @@ def identical_flow(args, work):
 def identical_wcsph(args, work):
     scenario = os.path.join(HERE, "..", "..", "scenarios", "dambreak.lua")
     variables = {"solver": "wcsph", "particles": 1500, "t_end": 0.15, "interval": 0.03, "restart_interval": 0,
-                 "images": 0.05}
-    _, frames = same_outputs(args, work, scenario, variables, ["thermo.csv", "image_00003.png"])
-    print(f"WCSPH: {len(frames)} frames, the pictures and thermo.csv identical at 1, 2 and 3 ranks")
+                 "images": 0.05, "surface": 0.05}
+    _, frames = same_outputs(args, work, scenario, variables,
+                             ["thermo.csv", "image_00003.png", "surface/surface_00003.ply", "surface/surface.pvd"])
+    print(f"WCSPH: {len(frames)} frames, the pictures, surfaces and thermo.csv identical at 1, 2 and 3 ranks")
 
 
 def identical_dfsph(args, work):
     scenarios = os.path.join(HERE, "..", "..", "scenarios")
     variables = {"solver": "dfsph", "particles": 1500, "t_end": 0.15, "interval": 0.03, "restart_interval": 0,
-                 "images": 0.05}
+                 "images": 0.05, "surface": 0.05}
     _, frames = same_outputs(args, work, os.path.join(scenarios, "dambreak.lua"), variables,
-                             ["thermo.csv", "image_00003.png"])
+                             ["thermo.csv", "image_00003.png", "surface/surface_00003.vtp"])
     spheric = os.path.join(work, "spheric")
     os.makedirs(spheric, exist_ok=True)
     same_outputs(args, spheric, os.path.join(scenarios, "spheric_dambreak.lua"),
                  {"solver": "dfsph", "spacing": 0.05, "t_end": 0.6}, ["probes.csv", "thermo.csv"], least_frames=0)
-    print(f"DFSPH: the dam break's {len(frames)} frames, pictures and thermo.csv, and SPHERIC's pressure probes, "
+    print(f"DFSPH: the dam break's {len(frames)} frames, pictures, surfaces and thermo.csv, and SPHERIC's pressure probes, "
           "gauges and obstacle load, identical at 1, 2 and 3 ranks")
 
 

@@ -1,0 +1,80 @@
+// reconstruct_surface: the settings checked, then the steps of engine/surface/surface_parts.hpp.
+#include "engine/surface/surface.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+#include "engine/surface/surface_parts.hpp"
+
+namespace pbf {
+
+namespace {
+
+void check(const SurfaceCloud& cloud, const SurfaceSettings& s) {
+  auto positive = [](const char* name, double v, const char* unit) {
+    if (!(std::isfinite(v) && v > 0)) throw Error(fmt::format("surface: '{}' must be a positive {}, got {}", name, unit, v));
+  };
+  positive("spacing", s.spacing, "length (m)");
+  positive("radius", s.radius, "length (m)");
+  positive("voxel", s.voxel, "length (m)");
+  positive("memory", s.memory_limit, "number of bytes");
+  if (!(std::isfinite(s.iso) && s.iso > 0 && s.iso < 1))
+    throw Error(fmt::format("surface: 'iso' must lie between 0 and 1 (phi is 1 inside the fluid), got {}", s.iso));
+  if (s.kernel == SurfaceKernel::spheres) positive("sphere_radius", s.sphere_radius, "length (m)");
+  if (!(s.max_stretch >= 1 && std::isfinite(s.max_stretch)))
+    throw Error(fmt::format("surface: 'max_stretch' must be at least 1, got {}", s.max_stretch));
+  for (int a = 0; a < 3; ++a)
+    if (!(s.hi[a] > s.lo[a])) throw Error("surface: the domain is empty");
+  const std::size_t n = cloud.size();
+  if (cloud.y.size() != n || cloud.z.size() != n || cloud.volume.size() != n)
+    throw Error("surface: positions and volumes differ in length");
+  for (const auto& a : cloud.attributes)
+    if (a.values.size() != n * static_cast<std::size_t>(a.components))
+      throw Error(fmt::format("surface: attribute '{}' has {} values for {} particles", a.name, a.values.size(), n));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(std::isfinite(cloud.x[i]) && std::isfinite(cloud.y[i]) && std::isfinite(cloud.z[i]) &&
+          std::isfinite(cloud.volume[i]) && cloud.volume[i] >= 0))
+      throw Error(fmt::format("surface: particle {} (of {}) has a position or volume that is not finite", i, n));
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+SurfaceMesh reconstruct_surface(const SurfaceCloud& cloud, const SurfaceSettings& settings, SurfaceStats* stats_out) {
+  check(cloud, settings);
+  SurfaceStats stats;
+  SurfaceMesh mesh;
+  if (cloud.size() == 0) {  // an empty frame: an empty mesh, with its attributes' names
+    for (const auto& a : cloud.attributes) mesh.attributes.push_back({a.name, a.components, {}});
+    if (stats_out) *stats_out = stats;
+    return mesh;
+  }
+  auto t = std::chrono::steady_clock::now();
+  const SurfaceParticles particles = with_images(cloud, settings);
+  NeighborGrid cells;
+  const std::vector<ParticleKernel> kernels = particle_kernels(particles, cloud, settings, cells);
+  stats.images = particles.size() - particles.originals;
+  stats.seconds_kernels = seconds_since(t);
+
+  const VoxelBlocks field = voxel_blocks(particles, kernels, settings, stats);
+
+  t = std::chrono::steady_clock::now();
+  mesh = march_blocks(field, settings);
+  stats.seconds_mesh = seconds_since(t);
+
+  t = std::chrono::steady_clock::now();
+  vertex_values(particles, kernels, cloud, cells, mesh);
+  stats.seconds_attributes = seconds_since(t);
+  stats.bytes += mesh.mesh.vertices.size() * (sizeof(mesh.mesh.vertices[0]) + sizeof(mesh.normals[0])) +
+                 mesh.mesh.triangles.size() * sizeof(mesh.mesh.triangles[0]);
+  if (stats_out) *stats_out = stats;
+  return mesh;
+}
+
+}  // namespace pbf

@@ -1,0 +1,101 @@
+#pragma once
+// A triangle mesh of the fluid's free surface, reconstructed from particles: the iso-surface
+// phi = iso of a smoothed particle density on a voxel grid, meshed by marching cubes.
+//
+//   phi(x) = sum_j V_j A_j P(d_j . Q_j d_j),  d_j = x - x_j,  P(q) = (1 - q)^3 for q < 1, else 0
+//
+// V_j: the particle's volume (m_j / m times s^3, s the lattice spacing), so phi is about 1
+// inside the fluid and 0 outside, and iso = 1/2 lies half a spacing beyond the outer layer of
+// a lattice: the surface then encloses the particles' volume. Q_j and A_j make the kernel an
+// ellipsoid that integrates to 1:
+//
+//   isotropic (Mueller et al. 2003's colour field): Q = I / R^2, A = 315 / (64 pi R^3);
+//   anisotropic (Yu & Turk 2013): the axes follow the weighted covariance of the particle's
+//     neighbours within R, C = sum_k w_k (x_k - xm)(x_k - xm)^T / sum_k w_k with
+//     w_k = 1 - (r_k / R)^3 and xm the weighted mean: with eigenvalues l1 >= l2 >= l3 and
+//     eigenvectors e1..e3, semi-axes a_i = R max(sqrt(l_i / l1), 1 / k_r) along e_i (k_r = 2:
+//     the spread of the neighbours, not Yu & Turk's variances, whose ratio of 3 and more
+//     between a layered interior's directions opened voids between the layers), so a particle
+//     inside the fluid keeps the sphere of radius R and one at a flat surface is squashed
+//     across it (a flat, smooth top), while one with fewer than `isolated_below` neighbours
+//     gets a sphere of radius R / 2 (a splash's droplet stays visible).
+//     Q = sum_i e_i e_i^T / a_i^2 and A = 315 / (64 pi a1 a2 a3).
+//   spheres (Zhu & Bridson 2005's smoothed union of spheres): with weights P_j = P(|d_j|^2 / R^2),
+//     the weighted centre xb = sum P_j x_j / sum P_j and radius rb = sum P_j r_j / sum P_j
+//     (r_j = sphere_radius (V_j / s^3)^(1/3)), the signed distance |x - xb| - rb to that sphere,
+//     stored as phi = iso - (|x - xb| - rb) / s so that "inside" is phi > iso as for the others.
+//
+// Walls: with walls closed or open, the particles within R of a wall face of the domain are
+// mirrored across it, so phi meets the wall as if the fluid went on (the surface stands square
+// to the wall, at the fluid's true height), and the voxels beyond the face are set so that the
+// surface crosses exactly at the face: closed, the mesh includes the wetted wall (one closed
+// body); open, those triangles are left out (only the free surface).
+//
+// Deterministic: the particles come in a fixed order (by id), each voxel sums its particles in
+// that order, and the mesh is assembled block by block in a fixed order: the same bits at any
+// thread count. The grid's voxels are aligned with the domain (its faces lie halfway between
+// two voxel layers), so the grid does not depend on where the particles are.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/core/real.hpp"
+#include "engine/geometry/triangle_mesh.hpp"
+
+namespace pbf {
+
+// The particles the surface is made of, in a fixed order (ascending id).
+struct SurfaceCloud {
+  std::vector<real> x, y, z;
+  std::vector<double> volume;  // V_j (m^3)
+  // Values carried to the mesh's vertices: each attribute's components for every particle,
+  // component-major (values[c * n + j]); a vector's (3 components) mirror image flips.
+  struct Attribute {
+    std::string name;
+    int components = 1;
+    std::vector<double> values;
+  };
+  std::vector<Attribute> attributes;
+  std::size_t size() const { return x.size(); }
+};
+
+enum class SurfaceKernel { anisotropic, isotropic, spheres };
+enum class SurfaceWalls { closed, open, none };
+
+struct SurfaceSettings {
+  double spacing = 0;         // the particles' lattice spacing s (m)
+  double radius = 0;          // the smoothing radius R (m)
+  double voxel = 0;           // the voxel edge asked for (m); each axis's divides the domain
+  double iso = 0.5;           // the level of phi that is the surface
+  SurfaceKernel kernel = SurfaceKernel::anisotropic;
+  int isolated_below = 6;     // fewer neighbours within R than this: a droplet's sphere
+  double max_stretch = 2;     // k_r: the longest axis over the shortest, at most
+  double sphere_radius = 0;   // spheres: a particle's radius r (m; default 0.6 s)
+  SurfaceWalls walls = SurfaceWalls::closed;
+  double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};  // the domain
+  std::array<bool, 6> wall{};  // which faces (x-, x+, y-, ...) are walls
+  double memory_limit = 4.0 * (1ull << 30);     // bytes the grid may take
+};
+
+struct SurfaceMesh {
+  TriangleMesh mesh;                               // outward (right-hand) normals
+  std::vector<std::array<float, 3>> normals;       // per vertex: -grad phi, unit
+  std::vector<SurfaceCloud::Attribute> attributes;  // per vertex, component-major as the cloud's
+};
+
+// What a reconstruction cost.
+struct SurfaceStats {
+  double seconds_kernels = 0, seconds_field = 0, seconds_mesh = 0, seconds_attributes = 0;
+  std::size_t blocks = 0;       // blocks of voxels computed
+  std::size_t voxels = 0;       // voxels computed (blocks x 16^3)
+  std::size_t bytes = 0;        // the largest memory it held at once (approximate)
+  std::size_t images = 0;       // mirror images at walls
+};
+
+// Checks the settings (a clear message naming the parameter) and the size of the grid
+// (refused beyond memory_limit, with the size it would need); throws pbf::Error.
+SurfaceMesh reconstruct_surface(const SurfaceCloud& cloud, const SurfaceSettings& settings,
+                                SurfaceStats* stats = nullptr);
+
+}  // namespace pbf
