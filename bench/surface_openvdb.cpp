@@ -15,13 +15,14 @@
 // particles per core-second (particles / (total s x T)), peak RSS (VmHWM), and a 64-bit
 // FNV-1a hash of the mesh (points then quads then triangles, as produced), to compare runs
 // at 1 and 2 threads for bit-identity. Then, untimed, on the last repeat's mesh: connected
-// components, whether isolated particles (no other within 2R) still have a surface around them,
-// and with --probe a patch's bumpiness (spread of face normals, area over projected area).
+// components, area, whether isolated particles and small droplets (clusters of touching spheres)
+// still have a surface around them, and with --probe a patch's bumpiness (spread of face
+// normals, area over projected area, vertex heights).
 //
 // Frame: text, one particle per line "x y z" in metres; lines starting with '#' ignored.
 //
 //   cmake -S . -B /tmp/vdb-build -DCMAKE_BUILD_TYPE=Release -DPBF_BUILD_TESTS=OFF
-//   cmake --build /tmp/vdb-build --target surface_openvdb -j1
+//   cmake --build build --target surface_openvdb (the main build has it: build/bench/surface_openvdb)
 //   /tmp/vdb-build/bench/surface_openvdb FILE --spacing S [--voxel V (S/2)] [--radius R (S)]
 //       [--smooth N (2)] [--filter meancurvature|gaussian|laplacian] [--threads T (all)]
 //       [--repeats K (3)] [--obj OUT.obj] [--probe x0 x1 y0 y1 z0 z1]
@@ -357,37 +358,66 @@ int main(int argc, char** argv) {
                                     double(b[5] - b[4]) * (b[5] - b[4]));
       if (diag < 4 * radius) ++nsmall;
     }
-  std::printf("components   %zu connected pieces, %zu of them droplet-sized (bounding-box diagonal < 4R)\n",
-              ncomp, nsmall);
+  // Enclosed volume per piece (divergence theorem; volumeToMesh winds inward, hence the minus):
+  // a negative one is a cavity, a bubble of gas the union of spheres leaves inside the liquid.
+  std::vector<double> comp_vol(P.size(), 0.0);
+  mesh.for_each_triangle([&](uint32_t a, uint32_t b, uint32_t c) {
+    comp_vol[find(a)] -= Vec3R(P[a]).dot(Vec3R(P[b]).cross(Vec3R(P[c]))) / 6.0;
+  });
+  size_t ncav = 0;
+  for (uint32_t v = 0; v < P.size(); ++v) ncav += comp_size[v] && comp_vol[v] < 0;
+  std::printf("components   %zu connected pieces, %zu of them droplet-sized (bounding-box diagonal < 4R), "
+              "%zu cavities (negative volume)\n",
+              ncomp, nsmall, ncav);
+  double total_area = 0;
+  mesh.for_each_triangle([&](uint32_t a, uint32_t b, uint32_t c) {
+    total_area += 0.5 * (Vec3R(P[b]) - Vec3R(P[a])).cross(Vec3R(P[c]) - Vec3R(P[a])).length();
+  });
+  std::printf("area         %.6f m^2 of mesh\n", total_area);
 
-  // Isolated particles (no other within 2R: a sphere touching no other) and whether the mesh
-  // still has a vertex within R of them (the sphere's own surface; any other surface is > R away).
+  // Droplets: clusters of particles whose spheres touch (centres closer than 2R), of 1 particle
+  // (isolated) and of 2..9; one survives if the mesh has a vertex within R of one of its
+  // particles (marching-cubes vertices of a sphere lie at or just inside R, and any other
+  // cluster's surface is farther than R away).
   {
     const CellIndex pidx(particles.pos, 2 * radius);
-    std::vector<uint32_t> isolated;
+    std::vector<uint32_t> up(np);
+    std::iota(up.begin(), up.end(), 0u);
+    auto pfind = [&](uint32_t x) {
+      while (up[x] != x) x = up[x] = up[up[x]];
+      return x;
+    };
     for (size_t n = 0; n < np; ++n) {
-      bool alone = true;
       const Vec3R x = particles.pos[n];
       pidx.near(x, [&](uint32_t m) {
-        if (m != n && (particles.pos[m] - x).lengthSqr() < 4 * radius * radius) alone = false;
+        if (m > n && (particles.pos[m] - x).lengthSqr() < 4 * radius * radius) {
+          const uint32_t a = pfind(uint32_t(n)), b = pfind(m);
+          if (a != b) up[std::max(a, b)] = std::min(a, b);
+        }
       });
-      if (alone) isolated.push_back(uint32_t(n));
     }
-    size_t survived = 0;
-    if (!isolated.empty() && !P.empty()) {
-      const CellIndex vidx(P, radius);
-      for (uint32_t n : isolated) {
-        bool found = false;
-        const Vec3R x = particles.pos[n];
-        vidx.near(x, [&](uint32_t v) {
-          const Vec3R d(P[v][0] - x[0], P[v][1] - x[1], P[v][2] - x[2]);
-          if (d.lengthSqr() <= radius * radius * (1 + 1e-6)) found = true;
-        });
-        survived += found;
-      }
+    std::vector<uint32_t> csize(np, 0);
+    for (size_t n = 0; n < np; ++n) ++csize[pfind(uint32_t(n))];
+    std::vector<char> alive(np, 0);
+    const CellIndex vidx(P, radius);
+    for (size_t n = 0; n < np; ++n) {
+      const uint32_t r = pfind(uint32_t(n));
+      if (csize[r] >= 10 || alive[r]) continue;
+      const Vec3R x = particles.pos[n];
+      vidx.near(x, [&](uint32_t v) {
+        const Vec3R d(P[v][0] - x[0], P[v][1] - x[1], P[v][2] - x[2]);
+        if (d.lengthSqr() <= radius * radius * (1 + 1e-6)) alive[r] = 1;
+      });
     }
-    std::printf("isolated     %zu particles with no other within 2R; %zu still have surface within R\n",
-                isolated.size(), survived);
+    size_t iso = 0, iso_alive = 0, small = 0, small_alive = 0;
+    for (size_t r = 0; r < np; ++r) {
+      if (csize[r] == 1) ++iso, iso_alive += alive[r];
+      else if (csize[r] > 1 && csize[r] < 10) ++small, small_alive += alive[r];
+    }
+    std::printf("isolated     %zu particles with no other within 2R; %zu still have surface within R\n", iso,
+                iso_alive);
+    std::printf("droplets     %zu clusters of 2..9 touching spheres; %zu still have surface within R\n", small,
+                small_alive);
   }
 
   // Bumpiness of a patch: triangles whose centroid lies in the probe box.

@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   }
   std::string frame = argv[1], kernel = "anisotropic", ply;
   double spacing = 0, voxel = 0.5, radius = 2;
+  int smoothing = -1;
   int repeats = 3, threads = omp_get_max_threads();
   std::vector<double> domain;
   for (int k = 2; k + 1 < argc; k += 2) {
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
     else if (flag == "--repeats") repeats = std::stoi(value);
     else if (flag == "--threads") threads = std::stoi(value);
     else if (flag == "--ply") ply = value;
+    else if (flag == "--smoothing") smoothing = std::stoi(value);
     else {
       std::fprintf(stderr, "surface_rate: unknown option %s\n", flag.c_str());
       return 2;
@@ -114,6 +116,7 @@ int main(int argc, char** argv) {
   s.kernel = kernel == "isotropic" ? pbf::SurfaceKernel::isotropic
                                    : (kernel == "spheres" ? pbf::SurfaceKernel::spheres : pbf::SurfaceKernel::anisotropic);
   s.sphere_radius = 0.6 * spacing;
+  if (smoothing >= 0) s.smoothing = smoothing;
   // The tank (--domain), else the particles' bounding box grown by half a spacing: its faces are walls.
   for (int a = 0; a < 3; ++a) {
     s.lo[a] = domain.empty() ? lo[a] - spacing / 2 : domain[a];

@@ -49,6 +49,7 @@ class DumpSurface : public Dump {
         radius_(p.real("radius")),
         iso_(p.real("iso")),
         sphere_radius_(p.real("sphere_radius")),
+        smoothing_(static_cast<int>(p.integer("smoothing"))),
         memory_mib_(p.real("memory")),
         collection_(p.string("collection")) {
     const std::string main = extension_of(pattern());
@@ -136,6 +137,7 @@ class DumpSurface : public Dump {
     s.voxel = voxel_ * s.spacing;
     s.iso = iso_;
     s.sphere_radius = sphere_radius_ * s.spacing;
+    s.smoothing = smoothing_;
     s.kernel = kernel_;
     s.walls = walls_;
     s.memory_limit = memory_mib_ * (1 << 20);
@@ -200,7 +202,9 @@ class DumpSurface : public Dump {
     return c;
   }
 
-  double voxel_, radius_, iso_, sphere_radius_, memory_mib_;
+  double voxel_, radius_, iso_, sphere_radius_;
+  int smoothing_;
+  double memory_mib_;
   mutable double mass_ = 0;
   std::string collection_;
   std::vector<std::string> formats_;
@@ -224,6 +228,9 @@ void register_dump_surface(StyleRegistry& r) {
   params.push_back(ParamSpec{"sphere_radius", ParamType::Real, 0.6, "spacings",
                              "spheres: a particle's radius r (0.6 puts a flat surface half a spacing beyond the "
                              "outer layer)"}.above_within(0, 10));
+  params.push_back(ParamSpec{"smoothing", ParamType::Integer, std::int64_t(1), "passes",
+                             "of a (1 2 1)/4 filter over the field along each axis: rounds off the particles' "
+                             "bumps (droplets are added after it)"}.within(0, 10));
   params.push_back(ParamSpec{"iso", ParamType::Real, 0.5, "",
                              "the surface's level of the smoothed density (1 inside the fluid)"}.above_within(0, 0.99));
   params.push_back(ParamSpec{"walls", ParamType::String, std::string("closed"), "",

@@ -86,6 +86,7 @@ void symmetric_eigen(double m[3][3], double value[3], double vec[3][3]) {
 }
 
 constexpr double kPoly6 = 315.0 / (64.0 * std::numbers::pi);
+constexpr int kLanes = 4;  // one SSE vector per sum: the eleven sums stay in registers
 
 // The kernel with semi-axes a[k] along the unit vectors e[.][k] (columns), weighing volume V.
 ParticleKernel ellipsoid(const double a[3], const double e[3][3], double volume) {
@@ -114,65 +115,98 @@ std::vector<ParticleKernel> particle_kernels(const SurfaceParticles& p, const Su
   for (int a = 0; a < 3; ++a) box.lo[a] = s.lo[a], box.hi[a] = s.hi[a];
   cells.bin(p.x.data(), p.y.data(), p.z.data(), n, box, s.radius);
   std::vector<ParticleKernel> kernels(n);
-  const double R = s.radius, R2 = R * R;
+  const double R = s.radius;
   const double identity[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
   const GridGeometry& g = cells.geometry();
   const std::uint32_t* starts = cells.cell_starts();
   const std::uint32_t* order = cells.sorted_order().data();
   const long* dims = g.dims;
+  // Positions packed in cell order, so that a cell's candidates are read in vectors, and
+  // padded with kLanes far-away points for the last vector (1e15 m: its square stays finite).
+  std::vector<float> px(n + kLanes, 1e15f), py(n + kLanes, 1e15f), pz(n + kLanes, 1e15f);
+  for (std::size_t k = 0; k < n; ++k) px[k] = p.x[order[k]], py[k] = p.y[order[k]], pz[k] = p.z[order[k]];
+  // The weight sum of a full neighbourhood: sum over a lattice of (1 - r^2/R^2)^3, about its
+  // integral 4 pi (16/315) (R/s)^3.
+  const double full = 4 * std::numbers::pi * 16.0 / 315.0 * std::pow(R / s.spacing, 3);
 
   for_blocks(originals, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const double V = cloud.volume[i];
-      if (s.kernel != SurfaceKernel::anisotropic) {
+      const float xi = static_cast<float>(p.x[i]), yi = static_cast<float>(p.y[i]), zi = static_cast<float>(p.z[i]);
+      long c[3];
+      const double at[3] = {p.x[i], p.y[i], p.z[i]};
+      for (int a = 0; a < 3; ++a) c[a] = g.cell_along(a, at[a]);
+      // Weighted sums over the neighbours within R (the particle itself included), offsets
+      // from the particle: sum w, sum w d, sum w d d^T, with w = (1 - r^2/R^2)^3; in kLanes
+      // lanes (a vector each), added up in a fixed order at the end.
+      const float inv_R2 = static_cast<float>(1 / (R * R));
+      alignas(32) float n_[kLanes] = {}, w_[kLanes] = {}, x_[kLanes] = {}, y_[kLanes] = {}, z_[kLanes] = {},
+                        xx_[kLanes] = {}, yy_[kLanes] = {}, zz_[kLanes] = {}, xy_[kLanes] = {}, xz_[kLanes] = {},
+                        yz_[kLanes] = {};
+      for (long cz = std::max(0L, c[2] - 1); cz <= std::min(dims[2] - 1, c[2] + 1); ++cz)
+        for (long cy = std::max(0L, c[1] - 1); cy <= std::min(dims[1] - 1, c[1] + 1); ++cy) {
+          const long row = (cz * dims[1] + cy) * dims[0];
+          const std::size_t first = starts[row + std::max(0L, c[0] - 1)];
+          const std::size_t last = starts[row + std::min(dims[0] - 1, c[0] + 1) + 1];
+          for (std::size_t k0 = first; k0 < last; k0 += kLanes) {
+            const float *ax = px.data() + k0, *ay = py.data() + k0, *az = pz.data() + k0;
+            const int left = static_cast<int>(last - k0);
+#pragma omp simd
+            for (int l = 0; l < kLanes; ++l) {  // past `last`: the padding, far away
+              const float dx = ax[l] - xi, dy = ay[l] - yi, dz = az[l] - zi;
+              const float q = 1.0f - (dx * dx + dy * dy + dz * dz) * inv_R2;
+              const float inside = static_cast<float>((q > 0.0f) & (l < left));
+              const float t = q * inside, w = t * t * t;
+              n_[l] += inside;
+              w_[l] += w;
+              x_[l] += w * dx;
+              y_[l] += w * dy;
+              z_[l] += w * dz;
+              xx_[l] += w * dx * dx;
+              yy_[l] += w * dy * dy;
+              zz_[l] += w * dz * dz;
+              xy_[l] += w * dx * dy;
+              xz_[l] += w * dx * dz;
+              yz_[l] += w * dy * dz;
+            }
+          }
+        }
+      const float* lanes[11] = {n_, w_, x_, y_, z_, xx_, yy_, zz_, xy_, xz_, yz_};
+      double sum[11];
+      for (int v = 0; v < 11; ++v) {
+        sum[v] = 0;
+        for (int l = 0; l < kLanes; ++l) sum[v] += lanes[v][l];
+      }
+      const double count = sum[0], W = sum[1];
+      const double xx = sum[5], yy = sum[6], zz = sum[7], xy = sum[8], xz = sum[9], yz = sum[10];
+      // Inside the fluid: a full neighbourhood around the particle (its kernel's support then
+      // lies where phi is well above iso: the surface's blocks need not see it alone).
+      const double m[3] = {sum[2] / W, sum[3] / W, sum[4] / W};
+      const bool interior = W > 0.85 * full && std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]) < 0.1 * R;
+      if (s.kernel != SurfaceKernel::anisotropic || interior) {
+        // (Inside the fluid Yu & Turk's covariance is a sphere's: no decomposition needed.)
         const double a[3] = {R, R, R};
         kernels[i] = ellipsoid(a, identity, V);
         kernels[i].radius = static_cast<float>(s.sphere_radius * std::cbrt(V) / s.spacing);
-        continue;
-      }
-      const double xi = p.x[i], yi = p.y[i], zi = p.z[i];
-      long c[3];
-      const double at[3] = {xi, yi, zi};
-      for (int a = 0; a < 3; ++a) c[a] = g.cell_along(a, at[a]);
-      // Weighted sums over the neighbours within R (the particle itself included), offsets
-      // from the particle: sum w, sum w d, sum w d d^T.
-      double W = 0, m[3] = {0, 0, 0}, mm[6] = {0, 0, 0, 0, 0, 0};
-      int neighbours = -1;  // not counting itself
-      for (long cz = std::max(0L, c[2] - 1); cz <= std::min(dims[2] - 1, c[2] + 1); ++cz)
-        for (long cy = std::max(0L, c[1] - 1); cy <= std::min(dims[1] - 1, c[1] + 1); ++cy)
-          for (long cx = std::max(0L, c[0] - 1); cx <= std::min(dims[0] - 1, c[0] + 1); ++cx) {
-            const std::size_t cell = static_cast<std::size_t>((cz * dims[1] + cy) * dims[0] + cx);
-            for (std::uint32_t k = starts[cell]; k < starts[cell + 1]; ++k) {
-              const std::uint32_t j = order[k];
-              const double dx = p.x[j] - xi, dy = p.y[j] - yi, dz = p.z[j] - zi;
-              const double r2 = dx * dx + dy * dy + dz * dz;
-              if (r2 >= R2) continue;
-              const double r = std::sqrt(r2) / R, w = 1 - r * r * r;
-              ++neighbours;
-              W += w;
-              m[0] += w * dx, m[1] += w * dy, m[2] += w * dz;
-              mm[0] += w * dx * dx, mm[1] += w * dy * dy, mm[2] += w * dz * dz;
-              mm[3] += w * dx * dy, mm[4] += w * dx * dz, mm[5] += w * dy * dz;
-            }
-          }
-      if (neighbours < s.isolated_below) {
+      } else if (count - 1 < s.isolated_below) {  // not counting itself
         const double a[3] = {R / 2, R / 2, R / 2};
         kernels[i] = ellipsoid(a, identity, V);
-        continue;
+        kernels[i].isolated = true;
+      } else {
+        double C[3][3] = {{xx / W - m[0] * m[0], xy / W - m[0] * m[1], xz / W - m[0] * m[2]},
+                          {0, yy / W - m[1] * m[1], yz / W - m[1] * m[2]},
+                          {0, 0, zz / W - m[2] * m[2]}};
+        C[1][0] = C[0][1], C[2][0] = C[0][2], C[2][1] = C[1][2];
+        double value[3], vec[3][3];
+        symmetric_eigen(C, value, vec);
+        const double largest = std::max({value[0], value[1], value[2]});
+        double a[3];
+        for (int k = 0; k < 3; ++k)
+          a[k] = largest > 0 ? R * std::max(std::sqrt(std::max(0.0, value[k]) / largest), 1 / s.max_stretch) : R;
+        kernels[i] = ellipsoid(a, vec, V);
       }
-      for (double& v : m) v /= W;
-      double C[3][3] = {{mm[0] / W - m[0] * m[0], mm[3] / W - m[0] * m[1], mm[4] / W - m[0] * m[2]},
-                        {0, mm[1] / W - m[1] * m[1], mm[5] / W - m[1] * m[2]},
-                        {0, 0, mm[2] / W - m[2] * m[2]}};
-      C[1][0] = C[0][1], C[2][0] = C[0][2], C[2][1] = C[1][2];
-      double value[3], vec[3][3];
-      symmetric_eigen(C, value, vec);
-      const double largest = std::max({value[0], value[1], value[2]});
-      double a[3];
-      for (int k = 0; k < 3; ++k)
-        a[k] = largest > 0 ? R * std::max(std::sqrt(std::max(0.0, value[k]) / largest), 1 / s.max_stretch) : R;
-      kernels[i] = ellipsoid(a, vec, V);
+      kernels[i].interior = interior;
     }
   });
 

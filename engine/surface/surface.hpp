@@ -12,7 +12,7 @@
 //   isotropic (Mueller et al. 2003's colour field): Q = I / R^2, A = 315 / (64 pi R^3);
 //   anisotropic (Yu & Turk 2013): the axes follow the weighted covariance of the particle's
 //     neighbours within R, C = sum_k w_k (x_k - xm)(x_k - xm)^T / sum_k w_k with
-//     w_k = 1 - (r_k / R)^3 and xm the weighted mean: with eigenvalues l1 >= l2 >= l3 and
+//     w_k = (1 - r_k^2 / R^2)^3 and xm the weighted mean: with eigenvalues l1 >= l2 >= l3 and
 //     eigenvectors e1..e3, semi-axes a_i = R max(sqrt(l_i / l1), 1 / k_r) along e_i (k_r = 2:
 //     the spread of the neighbours, not Yu & Turk's variances, whose ratio of 3 and more
 //     between a layered interior's directions opened voids between the layers), so a particle
@@ -72,6 +72,7 @@ struct SurfaceSettings {
   int isolated_below = 6;     // fewer neighbours within R than this: a droplet's sphere
   double max_stretch = 2;     // k_r: the longest axis over the shortest, at most
   double sphere_radius = 0;   // spheres: a particle's radius r (m; default 0.6 s)
+  int smoothing = 1;          // passes of a (1 2 1) / 4 filter over phi along each axis
   SurfaceWalls walls = SurfaceWalls::closed;
   double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};  // the domain
   std::array<bool, 6> wall{};  // which faces (x-, x+, y-, ...) are walls

@@ -27,6 +27,8 @@ struct ParticleKernel {
   float weight;     // V A (dimensionless: phi's unit)
   float extent[3];  // the half-widths of its support's bounding box (m)
   float radius;     // the smoothed spheres' particle radius r_j (m)
+  bool interior;    // a full neighbourhood: phi is well above iso wherever this kernel reaches
+  bool isolated;    // fewer neighbours than isolated_below: a droplet's sphere
 };
 // Bins the particles in `cells` (R wide) and gives each its kernel (an image its original's,
 // reflected).
@@ -34,8 +36,9 @@ std::vector<ParticleKernel> particle_kernels(const SurfaceParticles& p, const Su
                                              const SurfaceSettings& s, NeighborGrid& cells);
 
 // phi on a lattice of voxels aligned with the domain (voxel i's centre at lo + (i + 1/2) v
-// along each axis), stored in cubic blocks of kBlock^3 voxels where some kernel reaches (the
-// others hold 0).
+// along each axis), stored in cubic blocks of kBlock^3 voxels where the surface can be: the
+// band that the kernels of particles without a full neighbourhood reach. The blocks only
+// particles inside the fluid reach hold `inside` (not stored), the others 0.
 class VoxelBlocks {
  public:
   static constexpr int kBlock = 16;
@@ -44,15 +47,17 @@ class VoxelBlocks {
   double lo[3] = {0, 0, 0}, v[3] = {1, 1, 1};  // the domain's lower corner and the voxel edges
   long n[3] = {1, 1, 1};                       // voxels across the domain
   long block_lo[3] = {0, 0, 0}, block_dims[3] = {0, 0, 0};  // the blocks held, in block units
-  std::vector<std::int32_t> block_slot;  // per block of the box: its slot, or -1 (phi = 0)
+  static constexpr std::int32_t kEmpty = -1, kFull = -2;
+  float inside = 1;                      // phi in a kFull block
+  std::vector<std::int32_t> block_slot;  // per block of the box: its slot, kEmpty (phi = 0) or kFull
   std::vector<float> values;             // kBlockVoxels per slot, x fastest
   std::vector<long> slot_block[3];       // per slot: its block's coordinates
 
   std::size_t slots() const { return slot_block[0].size(); }
-  // The slot of block (bx, by, bz), or -1.
+  // The slot of block (bx, by, bz), or kEmpty or kFull.
   std::int32_t slot(long bx, long by, long bz) const {
     const long i = bx - block_lo[0], j = by - block_lo[1], k = bz - block_lo[2];
-    if (i < 0 || j < 0 || k < 0 || i >= block_dims[0] || j >= block_dims[1] || k >= block_dims[2]) return -1;
+    if (i < 0 || j < 0 || k < 0 || i >= block_dims[0] || j >= block_dims[1] || k >= block_dims[2]) return kEmpty;
     return block_slot[static_cast<std::size_t>((k * block_dims[1] + j) * block_dims[0] + i)];
   }
   // phi at voxel (i, j, k).

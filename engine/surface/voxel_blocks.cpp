@@ -34,7 +34,7 @@ std::string mib(double bytes) { return fmt::format("{:.0f} MiB", bytes / (1 << 2
 
 float VoxelBlocks::at(long i, long j, long k) const {
   const std::int32_t s = slot(floor_div(i, B), floor_div(j, B), floor_div(k, B));
-  if (s < 0) return 0;
+  if (s < 0) return s == kFull ? inside : 0.0f;
   const long li = i - floor_div(i, B) * B, lj = j - floor_div(j, B) * B, lk = k - floor_div(k, B) * B;
   return values[static_cast<std::size_t>(s) * kBlockVoxels + static_cast<std::size_t>((lk * B + lj) * B + li)];
 }
@@ -53,7 +53,7 @@ void VoxelBlocks::padded(long bx, long by, long bz, float* out) const {
         const int from = part == 0 ? 0 : (part == 1 ? 1 : B + 1), to = part == 0 ? 1 : (part == 1 ? B + 1 : P);
         const std::int32_t s = slot(cx, cj, ck);
         if (s < 0) {
-          std::fill(row + from, row + to, 0.0f);
+          std::fill(row + from, row + to, s == kFull ? inside : 0.0f);
           continue;
         }
         const float* src = values.data() + static_cast<std::size_t>(s) * kBlockVoxels + (lk * B + lj) * B;
@@ -67,6 +67,8 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
                          const SurfaceSettings& s, SurfaceStats& stats) {
   const auto start = std::chrono::steady_clock::now();
   VoxelBlocks f;
+  // Inside the fluid phi is about 1, or, for the smoothed spheres, iso + r / s.
+  f.inside = static_cast<float>(s.kernel == SurfaceKernel::spheres ? s.iso + s.sphere_radius / s.spacing : 1.0);
   for (int a = 0; a < 3; ++a) {
     const double L = s.hi[a] - s.lo[a];
     f.n[a] = std::max(1L, std::lround(L / s.voxel));
@@ -102,58 +104,92 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
   auto block_index = [&](long bx, long by, long bz) {
     return static_cast<std::size_t>(((bz - blo[2]) * f.block_dims[1] + (by - blo[1])) * f.block_dims[0] + (bx - blo[0]));
   };
-  // Count the particles of each block, then list them (in particle order) by a prefix sum.
-  std::vector<std::uint32_t> start_of(blocks + 1, 0);
-  auto each_block = [&](std::size_t i, auto&& visit) {
+  // The band: the blocks that a kernel of a particle without a full neighbourhood reaches
+  // (grown by two voxels), where the surface can be. The other blocks some kernel reaches lie
+  // inside the fluid (phi well above iso: kFull, not computed); the rest are empty (phi = 0).
+  auto each_block = [&](std::size_t i, long grow, auto&& visit) {
     const long* b = &box[6 * i];
-    for (long bz = floor_div(b[4], B); bz <= floor_div(b[5], B); ++bz)
-      for (long by = floor_div(b[2], B); by <= floor_div(b[3], B); ++by)
-        for (long bx = floor_div(b[0], B); bx <= floor_div(b[1], B); ++bx) visit(block_index(bx, by, bz));
+    for (long bz = floor_div(b[4] - grow, B); bz <= floor_div(b[5] + grow, B); ++bz)
+      for (long by = floor_div(b[2] - grow, B); by <= floor_div(b[3] + grow, B); ++by)
+        for (long bx = floor_div(b[0] - grow, B); bx <= floor_div(b[1] + grow, B); ++bx) {
+          if (bx < blo[0] || by < blo[1] || bz < blo[2] || bx >= blo[0] + f.block_dims[0] ||
+              by >= blo[1] + f.block_dims[1] || bz >= blo[2] + f.block_dims[2])
+            continue;
+          visit(block_index(bx, by, bz));
+        }
   };
-  for (std::size_t i = 0; i < np; ++i) each_block(i, [&](std::size_t b) { ++start_of[b + 1]; });
-  f.block_slot.assign(blocks, -1);
+  f.block_slot.assign(blocks, VoxelBlocks::kEmpty);
+  for (std::size_t i = 0; i < np; ++i)
+    each_block(i, 0, [&](std::size_t b) { f.block_slot[b] = VoxelBlocks::kFull; });
+  for (std::size_t i = 0; i < np; ++i)
+    if (!kernels[i].interior) each_block(i, 2, [&](std::size_t b) { f.block_slot[b] = 0; });
+  // A block with voxels beyond a closed wall is computed too, for the layer that closes the
+  // surface on the wall (below), and so is one with the last layer before an upper wall, which
+  // holds the edges that cross it; one wholly beyond a wall sums no particles.
+  auto beyond_wall = [&](std::size_t b, bool wholly) {
+    const long c[3] = {static_cast<long>(b % static_cast<std::size_t>(f.block_dims[0])) + blo[0],
+                       static_cast<long>((b / static_cast<std::size_t>(f.block_dims[0])) %
+                                         static_cast<std::size_t>(f.block_dims[1])) + blo[1],
+                       static_cast<long>(b / static_cast<std::size_t>(f.block_dims[0] * f.block_dims[1])) + blo[2]};
+    if (s.walls == SurfaceWalls::none) return false;
+    for (int a = 0; a < 3; ++a) {
+      const long first = c[a] * B, last = first + B - 1;
+      if (s.wall[2 * a] && (wholly ? last < 0 : first < 0)) return true;
+      if (s.wall[2 * a + 1] && (wholly ? first >= f.n[a] : last >= f.n[a] - 1)) return true;
+    }
+    return false;
+  };
   std::size_t used = 0;
   for (std::size_t b = 0; b < blocks; ++b)
-    if (start_of[b + 1] > 0) f.block_slot[b] = static_cast<std::int32_t>(used++);
+    if (f.block_slot[b] == 0 || (f.block_slot[b] == VoxelBlocks::kFull && beyond_wall(b, false)))
+      f.block_slot[b] = static_cast<std::int32_t>(used++);
   const double grid_bytes = static_cast<double>(used) * VoxelBlocks::kBlockVoxels * sizeof(float);
   if (grid_bytes > s.memory_limit)
     throw Error(fmt::format("the surface's grid would need {} ({} blocks of {}^3 voxels of {:.3g} m), more than the "
                             "memory limit of {}: raise 'memory' or the voxel size",
                             mib(grid_bytes), used, B, s.voxel, mib(s.memory_limit)));
+  // Each block's particles (a band block's, and a full one's, which may need computing after
+  // all), listed in particle order: counted, a prefix sum, then filled.
+  std::vector<std::uint32_t> start_of(blocks + 1, 0);
+  std::vector<char> sums(blocks, 0);
+  for (std::size_t b = 0; b < blocks; ++b) sums[b] = f.block_slot[b] != VoxelBlocks::kEmpty && !beyond_wall(b, true);
+  for (std::size_t i = 0; i < np; ++i)
+    each_block(i, 0, [&](std::size_t b) { start_of[b + 1] += sums[b]; });
   for (std::size_t b = 0; b < blocks; ++b) start_of[b + 1] += start_of[b];
   std::vector<std::uint32_t> members(start_of[blocks]);
   {
     std::vector<std::uint32_t> fill(start_of.begin(), start_of.end() - 1);
     for (std::size_t i = 0; i < np; ++i)
-      each_block(i, [&](std::size_t b) { members[fill[b]++] = static_cast<std::uint32_t>(i); });
+      each_block(i, 0, [&](std::size_t b) {
+        if (sums[b]) members[fill[b]++] = static_cast<std::uint32_t>(i);
+      });
   }
-  std::vector<std::size_t> slot_index(used);  // slot -> block of the box
-  for (int a = 0; a < 3; ++a) f.slot_block[a].resize(used);
+  std::vector<std::size_t> slot_index;  // slot -> block of the box
+  auto add_slot = [&](std::size_t b) {
+    slot_index.push_back(b);
+    f.slot_block[0].push_back(static_cast<long>(b % static_cast<std::size_t>(f.block_dims[0])) + blo[0]);
+    f.slot_block[1].push_back(static_cast<long>((b / static_cast<std::size_t>(f.block_dims[0])) %
+                                                static_cast<std::size_t>(f.block_dims[1])) + blo[1]);
+    f.slot_block[2].push_back(static_cast<long>(b / static_cast<std::size_t>(f.block_dims[0] * f.block_dims[1])) + blo[2]);
+  };
   for (std::size_t b = 0; b < blocks; ++b)
-    if (f.block_slot[b] >= 0) {
-      const std::size_t sl = static_cast<std::size_t>(f.block_slot[b]);
-      slot_index[sl] = b;
-      const long bx = static_cast<long>(b % static_cast<std::size_t>(f.block_dims[0]));
-      const long by = static_cast<long>((b / static_cast<std::size_t>(f.block_dims[0])) % static_cast<std::size_t>(f.block_dims[1]));
-      const long bz = static_cast<long>(b / static_cast<std::size_t>(f.block_dims[0] * f.block_dims[1]));
-      f.slot_block[0][sl] = bx + blo[0], f.slot_block[1][sl] = by + blo[1], f.slot_block[2][sl] = bz + blo[2];
-    }
+    if (f.block_slot[b] >= 0) add_slot(b);
   f.values.assign(used * VoxelBlocks::kBlockVoxels, 0.0f);
-  stats.blocks = used;
-  stats.voxels = used * VoxelBlocks::kBlockVoxels;
-  stats.bytes = std::max(stats.bytes, static_cast<std::size_t>(grid_bytes) + members.size() * 4 + box.size() * 8 +
-                                          blocks * 8 + np * sizeof(ParticleKernel));
-
   // Each block: its particles' kernels, row by row. The density sums V A P(q) straight into the
   // block; the smoothed spheres sum P(q), P(q) d and P(q) r_j (d = x_j - voxel) and then make
   // phi = iso - (|sum P d| - sum P r) / (s sum P): the signed distance to the sphere of radius
   // r-bar about the weighted centre, in spacings, below iso outside it.
   const bool spheres = s.kernel == SurfaceKernel::spheres;
+  // Under smoothing, the droplets (the isolated particles' kernels) are added after it, so that
+  // it rounds the bulk's surface without wiping out what a splash threw off: `droplets`
+  // selects which particles a call adds (all, when that split does not apply).
+  const bool split = s.smoothing > 0 && !spheres;
+  auto compute = [&](std::size_t first_slot, std::size_t end_slot, bool droplets) {
 #pragma omp parallel
   {
     std::vector<float> sums(spheres ? 5 * VoxelBlocks::kBlockVoxels : 0);
 #pragma omp for schedule(dynamic, 1)
-    for (std::size_t sl = 0; sl < used; ++sl) {
+    for (std::size_t sl = first_slot; sl < end_slot; ++sl) {
       const long bc[3] = {f.slot_block[0][sl], f.slot_block[1][sl], f.slot_block[2][sl]};
       float* out = f.values.data() + sl * VoxelBlocks::kBlockVoxels;
       std::fill(sums.begin(), sums.end(), 0.0f);
@@ -161,6 +197,7 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
       for (std::uint32_t m = start_of[b]; m < start_of[b + 1]; ++m) {
         const std::uint32_t i = members[m];
         const ParticleKernel& k = kernels[i];
+        if (split && k.isolated != droplets) continue;
         const long* bx = &box[6 * i];
         long lo3[3], hi3[3];
         for (int a = 0; a < 3; ++a) {
@@ -169,6 +206,8 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
         }
         const double cx = p.x[i], cy = p.y[i], cz = p.z[i];
         const double qxx = k.q[0], qyy = k.q[1], qzz = k.q[2], qxy = k.q[3], qxz = k.q[4], qyz = k.q[5];
+        const double half_over_qxx = 0.5 / qxx, voxels_per_m = 1 / f.v[0];
+        const double row_start = (cx - f.lo[0]) * voxels_per_m - 0.5;  // the centre, in voxel indices
         for (long kz = lo3[2]; kz <= hi3[2]; ++kz) {
           const double dz = f.centre(2, kz) - cz;
           for (long jy = lo3[1]; jy <= hi3[1]; ++jy) {
@@ -177,10 +216,10 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
             const double bq = 2 * (qxy * dy + qxz * dz), cq = qyy * dy * dy + qzz * dz * dz + 2 * qyz * dy * dz;
             const double disc = bq * bq - 4 * qxx * (cq - 1);
             if (disc <= 0) continue;
-            const double root = std::sqrt(disc);
-            const double x0 = cx + (-bq - root) / (2 * qxx), x1 = cx + (-bq + root) / (2 * qxx);
-            long first, last;
-            voxel_span(f, 0, 0.5 * (x0 + x1), 0.5 * (x1 - x0), first, last);
+            // The roots dx = (-b -/+ sqrt(disc)) / (2 qxx), as voxel indices.
+            const double root = std::sqrt(disc) * half_over_qxx, middle = -bq * half_over_qxx;
+            long first = static_cast<long>(std::ceil(row_start + (middle - root) * voxels_per_m));
+            long last = static_cast<long>(std::floor(row_start + (middle + root) * voxels_per_m));
             first = std::max(first, lo3[0]);
             last = std::min(last, hi3[0]);
             if (first > last) continue;
@@ -189,29 +228,32 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
             const float fq = static_cast<float>(qxx), fb = static_cast<float>(bq), fc = static_cast<float>(cq);
             const float x_first = static_cast<float>(f.centre(0, first) - cx), step = static_cast<float>(f.v[0]);
             const float w = k.weight;
+            const int count = static_cast<int>(last - first + 1);
             if (!spheres) {
-              float* r = out + row - x0_block;
+              float* r = out + row + (first - x0_block);
 #pragma omp simd
-              for (long ix = first; ix <= last; ++ix) {
-                const float dx = x_first + static_cast<float>(ix - first) * step;
-                const float t = std::max(0.0f, 1.0f - (fq * dx * dx + fb * dx + fc));
-                r[ix] += w * t * t * t;
+              for (int i = 0; i < count; ++i) {
+                const float dx = x_first + static_cast<float>(i) * step;
+                const float q = 1.0f - (fq * dx * dx + fb * dx + fc);
+                const float t = q > 0.0f ? q : 0.0f;
+                r[i] += w * t * t * t;
               }
             } else {
-              float* r = sums.data() + row - x0_block;
+              float* r = sums.data() + row + (first - x0_block);
               const std::size_t n = VoxelBlocks::kBlockVoxels;
               const float fy = static_cast<float>(dy), fz = static_cast<float>(dz);
               const float radius = k.radius;
 #pragma omp simd
-              for (long ix = first; ix <= last; ++ix) {
-                const float dx = x_first + static_cast<float>(ix - first) * step;
-                const float t = std::max(0.0f, 1.0f - (fq * dx * dx + fb * dx + fc));
+              for (int i = 0; i < count; ++i) {
+                const float dx = x_first + static_cast<float>(i) * step;
+                const float q = 1.0f - (fq * dx * dx + fb * dx + fc);
+                const float t = q > 0.0f ? q : 0.0f;
                 const float pw = t * t * t;
-                r[ix] += pw;
-                r[n + ix] -= pw * dx;
-                r[2 * n + ix] -= pw * fy;
-                r[3 * n + ix] -= pw * fz;
-                r[4 * n + ix] += pw * radius;
+                r[i] += pw;
+                r[n + i] -= pw * dx;
+                r[2 * n + i] -= pw * fy;
+                r[3 * n + i] -= pw * fz;
+                r[4 * n + i] += pw * radius;
               }
             }
           }
@@ -233,12 +275,17 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
       }
     }
   }
+  };
 
-  // The voxels beyond the walls.
-  if (s.walls != SurfaceWalls::none) {
+  // The voxels beyond the walls (again after each round: a full block computed since holds
+  // other values at their mirrors).
+  // With `as_mirror`, the first layer takes its mirror voxel's phi instead (what the smoothing
+  // reads beyond a wall: the fluid as if it went on).
+  auto close_walls = [&](bool as_mirror) {
+    if (s.walls == SurfaceWalls::none) return;
     const float iso = static_cast<float>(s.iso);
 #pragma omp parallel for schedule(dynamic, 1)
-    for (std::size_t sl = 0; sl < used; ++sl) {
+    for (std::size_t sl = 0; sl < f.slots(); ++sl) {
       const long bc[3] = {f.slot_block[0][sl], f.slot_block[1][sl], f.slot_block[2][sl]};
       bool touches = false;
       for (int a = 0; a < 3; ++a)
@@ -260,10 +307,101 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
             }
             if (!beyond) continue;
             const float inner = first_layer ? f.at(mirror[0], mirror[1], mirror[2]) : 0.0f;
-            out[(k * B + j) * B + i] = inner > iso ? 2 * iso - inner : 0.0f;
+            out[(k * B + j) * B + i] = as_mirror ? inner : (inner > iso ? 2 * iso - inner : 0.0f);
           }
     }
+  };
+
+  // A full block next to a computed one whose facing layer is not inside the surface may hold
+  // the surface after all (the band is a rule of thumb, not a bound): it is computed too, in
+  // rounds until no such block is left.
+  auto full_blocks_at_the_surface = [&] {
+    std::vector<std::size_t> found;
+    const float iso = static_cast<float>(s.iso);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      if (f.block_slot[b] != VoxelBlocks::kFull) continue;
+      const long c[3] = {static_cast<long>(b % static_cast<std::size_t>(f.block_dims[0])) + blo[0],
+                         static_cast<long>((b / static_cast<std::size_t>(f.block_dims[0])) %
+                                           static_cast<std::size_t>(f.block_dims[1])) + blo[1],
+                         static_cast<long>(b / static_cast<std::size_t>(f.block_dims[0] * f.block_dims[1])) + blo[2]};
+      bool at_surface = false;
+      for (int a = 0; a < 3 && !at_surface; ++a)
+        for (int side = -1; side <= 1 && !at_surface; side += 2) {
+          long nc[3] = {c[0], c[1], c[2]};
+          nc[a] += side;
+          const std::int32_t sl = f.slot(nc[0], nc[1], nc[2]);
+          // (Across a wall the closing layer faces it, and the edges that cross belong to
+          // the block beyond a lower wall, or to the computed block before an upper one.)
+          if (sl < 0 || beyond_wall(slot_index[static_cast<std::size_t>(sl)], true)) continue;
+          // The neighbour's layer that faces this block: index (side < 0 ? B - 1 : 0) along a.
+          const float* v = f.values.data() + static_cast<std::size_t>(sl) * VoxelBlocks::kBlockVoxels;
+          const int layer = side < 0 ? B - 1 : 0, stride[3] = {1, B, B * B};
+          const int u = (a + 1) % 3, w = (a + 2) % 3;
+          for (int p = 0; p < B && !at_surface; ++p)
+            for (int q = 0; q < B; ++q)
+              if (!(v[layer * stride[a] + p * stride[u] + q * stride[w]] > iso)) {
+                at_surface = true;
+                break;
+              }
+        }
+      if (at_surface) found.push_back(b);
+    }
+    return found;
+  };
+  compute(0, f.slots(), false);
+  for (;;) {
+    close_walls(false);
+    const std::vector<std::size_t> more = full_blocks_at_the_surface();
+    if (more.empty()) break;
+    const std::size_t first = f.slots();
+    for (std::size_t b : more) {
+      f.block_slot[b] = static_cast<std::int32_t>(f.slots());
+      add_slot(b);
+    }
+    const double bytes = static_cast<double>(f.slots()) * VoxelBlocks::kBlockVoxels * sizeof(float);
+    if (bytes > s.memory_limit)
+      throw Error(fmt::format("the surface's grid would need {} ({} blocks of {}^3 voxels of {:.3g} m), more than the "
+                              "memory limit of {}: raise 'memory' or the voxel size",
+                              mib(bytes), f.slots(), B, s.voxel, mib(s.memory_limit)));
+    f.values.resize(f.slots() * VoxelBlocks::kBlockVoxels, 0.0f);
+    compute(first, f.slots(), false);
   }
+  // Smoothing: passes of the binomial filter (1 2 1) / 4 along each axis over the computed
+  // blocks (a voxel's neighbours in the next block through the halo), the walls closed again.
+  if (s.smoothing > 0) {
+    std::vector<float> smoothed(f.values.size());
+    for (int pass = 0; pass < s.smoothing; ++pass) {
+      close_walls(true);
+#pragma omp parallel
+      {
+        constexpr int P = VoxelBlocks::kPadded;
+        std::vector<float> pad(static_cast<std::size_t>(P) * P * P), tmp(pad.size());
+#pragma omp for schedule(dynamic, 1)
+        for (std::size_t sl = 0; sl < f.slots(); ++sl) {
+          f.padded(f.slot_block[0][sl], f.slot_block[1][sl], f.slot_block[2][sl], pad.data());
+          const int step[3] = {1, P, P * P};
+          float* from = pad.data();
+          float* to = tmp.data();
+          for (int a = 0; a < 3; ++a) {  // along x, y, z in turn, over the whole padded box
+            for (int v = step[a]; v < P * P * P - step[a]; ++v)
+              to[v] = 0.25f * from[v - step[a]] + 0.5f * from[v] + 0.25f * from[v + step[a]];
+            std::swap(from, to);
+          }
+          float* out = smoothed.data() + sl * VoxelBlocks::kBlockVoxels;
+          for (int k = 0; k < B; ++k)
+            for (int j = 0; j < B; ++j)
+              for (int i = 0; i < B; ++i) out[(k * B + j) * B + i] = from[((k + 1) * P + (j + 1)) * P + (i + 1)];
+        }
+      }
+      f.values.swap(smoothed);
+    }
+    if (split) compute(0, f.slots(), true);
+    close_walls(false);
+  }
+  stats.blocks = f.slots();
+  stats.voxels = f.slots() * VoxelBlocks::kBlockVoxels;
+  stats.bytes = std::max(stats.bytes, f.values.size() * sizeof(float) + members.size() * 4 + box.size() * 8 +
+                                          blocks * 8 + np * sizeof(ParticleKernel));
   stats.seconds_field = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return f;
 }

@@ -6,8 +6,9 @@
 
 Runs scenarios/dambreak.lua once, writing text frames at the given times (t = 0 is the column
 at rest, a lattice), meshes each frame with each kernel (anisotropic: Yu & Turk 2013; spheres:
-Zhu & Bridson 2005; isotropic: a plain colour field) through build/bench/surface_rate (the
-same code as dump/surface, timed), and measures each mesh:
+Zhu & Bridson 2005; isotropic: a plain colour field), without and with one pass of the
+smoothing filter, through build/bench/surface_rate (the same code as dump/surface, timed), and
+measures each mesh:
 
   volume     the enclosed volume over the particles' (N s^3), at every frame: a surface that
              swells or shrinks the water changes it;
@@ -18,7 +19,9 @@ same code as dump/surface, timed), and measures each mesh:
              and 95th percentile over the edges (weighted by length). A surface with bumps at the
              particles' scale bends by about 1 per spacing; a smooth one much less;
   pieces     the mesh's connected pieces against the particles' clusters (particles closer than
-             2 s joined): a splash's droplets kept or lost;
+             2 s joined): a splash's droplets kept or lost; and of the pieces, the specks (an
+             enclosed volume below half a particle's, s^3 / 2: no particle makes one) and the
+             cavities (negative volume: a bubble the field leaves inside the water);
   seconds    the reconstruction's time (median of 3) and particles per core-second.
 
 Prints a table (and writes it as Markdown with --markdown).
@@ -32,6 +35,10 @@ import subprocess
 import sys
 
 import numpy as np
+
+
+VARIANTS = [("anisotropic", 0), ("anisotropic", 1), ("spheres", 0), ("spheres", 1), ("isotropic", 0),
+            ("isotropic", 1)]
 
 
 def read_ply(path):
@@ -58,6 +65,18 @@ def read_ply(path):
 def volume(x, tri):
     a, b, c = x[tri[:, 0]], x[tri[:, 1]], x[tri[:, 2]]
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6)
+
+
+def piece_volumes(x, tri):
+    """Each connected piece's enclosed volume (scipy's connected components)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    e = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]]])
+    graph = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(len(x), len(x)))
+    count, label = connected_components(graph, directed=False)
+    a, b, c = x[tri[:, 0]], x[tri[:, 1]], x[tri[:, 2]]
+    v = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6
+    return np.bincount(label[tri[:, 0]], weights=v, minlength=count)[np.unique(label[tri[:, 0]])]
 
 
 def components(n, edges):
@@ -111,7 +130,10 @@ def analyse(ply, spacing, particles, column=None):
     cum = np.cumsum(length[ok][order]) / length[ok].sum()
     out["bend50"] = float(bend[order][np.searchsorted(cum, 0.5)])
     out["bend95"] = float(bend[order][np.searchsorted(cum, 0.95)])
-    out["pieces"] = components(len(x), e)
+    pieces = piece_volumes(x, tri)
+    out["pieces"] = len(pieces)
+    out["specks"] = int(((pieces > 0) & (pieces < 0.5 * spacing ** 3)).sum())
+    out["cavities"] = int((pieces < 0).sum())
     if column:
         height, width, depth = column
         top = (x[:, 2] > height - 2 * spacing) & (x[:, 0] > 2 * spacing) & (x[:, 0] < width - 2 * spacing) & \
@@ -158,21 +180,23 @@ def main():
         frame = os.path.join(args.out, f"frame_{round(t / interval):05d}.txt")
         p = read_frame(frame)
         clusters = particle_clusters(p, 2 * s)
-        for kernel in ("anisotropic", "spheres", "isotropic"):
-            ply = os.path.join(args.out, f"surface_{kernel}_{t:g}.ply")
-            run = subprocess.run([args.rate, frame, "--spacing", str(s), "--kernel", kernel, "--threads",
-                                  str(args.threads), "--ply", ply, "--domain"] + [str(v) for v in domain],
-                                 check=True, capture_output=True, text=True).stdout
+        for kernel, smoothing in VARIANTS:
+            ply = os.path.join(args.out, f"surface_{kernel}_{smoothing}_{t:g}.ply")
+            run = subprocess.run([args.rate, frame, "--spacing", str(s), "--kernel", kernel, "--smoothing",
+                                  str(smoothing), "--threads", str(args.threads), "--ply", ply, "--domain"] +
+                                 [str(v) for v in domain], check=True, capture_output=True, text=True).stdout
             seconds = float(re.search(r"total ([0-9.]+)", run).group(1))
             rate = float(re.search(r"per core-second: ([0-9.]+)", run).group(1))
             m = analyse(ply, s, len(p), (2 * a, a, depth) if t == 0 else None)
-            rows.append((t, kernel, m, clusters, seconds, rate))
-    head = "| t (s) | kernel | volume | top angle (deg) | top height (s) | bend median | bend 95% | pieces / clusters | seconds | particles per core-s |"
-    lines = [head, "|" + "---|" * 10]
-    for t, kernel, m, clusters, seconds, rate in rows:
+            rows.append((t, kernel, smoothing, m, clusters, seconds, rate))
+    head = ("| t (s) | kernel | smoothing | volume | top angle (deg) | top height (s) | bend median | bend 95% | "
+            "pieces / clusters | specks | cavities | seconds | particles per core-s |")
+    lines = [head, "|" + "---|" * 13]
+    for t, kernel, smoothing, m, clusters, seconds, rate in rows:
         top = (f"{m['top_angle']:.1f}", f"{m['top_height']:.2f}") if "top_angle" in m else ("", "")
-        lines.append(f"| {t:g} | {kernel} | {m['volume']:.4f} | {top[0]} | {top[1]} | {m['bend50']:.3f} | "
-                     f"{m['bend95']:.3f} | {m['pieces']} / {clusters} | {seconds:.3f} | {rate:.0f} |")
+        lines.append(f"| {t:g} | {kernel} | {smoothing} | {m['volume']:.4f} | {top[0]} | {top[1]} | {m['bend50']:.3f} | "
+                     f"{m['bend95']:.3f} | {m['pieces']} / {clusters} | {m['specks']} | {m['cavities']} | "
+                     f"{seconds:.3f} | {rate:.0f} |")
     text = "\n".join(lines)
     print(text)
     if args.markdown:
