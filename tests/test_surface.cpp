@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.hpp"
+#include "engine/render/image_renderer.hpp"
 #include "engine/surface/cube_cases.hpp"
 #include "engine/surface/surface.hpp"
 #include "tests/surface_checks.hpp"
@@ -316,6 +317,41 @@ TEST(Surface, BadSettingsNameTheParameterAndAHugeGridIsRefusedWithItsSize) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("particle 3"), std::string::npos);
   }
+}
+
+// dump/image's draw = "surface": the column's mesh drawn as water. Seen from the side, the
+// water's pixels are blue (the body colour) with a lighter sheen where the view grazes the
+// surface (Fresnel); the picture is the same bytes at one and two threads.
+TEST(SurfaceImage, TheColumnIsDrawnAsWaterWithASheenSameBytesAtAnyThreadCount) {
+  Column col;
+  SurfaceSettings st = settings_for(col.s, col.hi);
+  const SurfaceMesh m = reconstruct_surface(col.cloud, st);
+  ImageSpec spec;
+  spec.width = 200, spec.height = 150, spec.radius = 1, spec.colorbar = false;
+  spec.direction = {1, 2, -0.7};
+  Domain domain;
+  for (int a = 0; a < 3; ++a) domain.hi[a] = col.hi[a];
+  const std::vector<SolidSurface> water{{&m.mesh, false, true, &m.normals}};
+  const real none = 0;
+  const double no_value = 0;
+  std::vector<unsigned char> one, two;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  ImageRenderer(spec).render(domain, &none, &none, &none, &no_value, 0, 0, 1, "", one, water);
+  omp_set_num_threads(std::max(2, threads));
+  ImageRenderer(spec).render(domain, &none, &none, &none, &no_value, 0, 0, 1, "", two, water);
+  omp_set_num_threads(threads);
+  EXPECT_TRUE(one == two);
+  int blue = 0, lightest = 0, darkest = 255;
+  for (std::size_t p = 0; p < one.size(); p += 3) {
+    const int r = one[p], g = one[p + 1], b = one[p + 2];
+    if (b > r + 30 && b >= g) {  // water: blue above red
+      ++blue;
+      lightest = std::max(lightest, r), darkest = std::min(darkest, r);
+    }
+  }
+  EXPECT_GT(blue, 2000);              // the column fills a good part of the picture
+  EXPECT_GT(lightest - darkest, 40);  // shaded: lit faces, grazing sheen and the shade differ
 }
 
 }  // namespace

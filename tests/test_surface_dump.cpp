@@ -184,7 +184,7 @@ TEST(DumpSurface, DamBreakMeshesAreClosedManifoldsAtEveryFrameSplashesIncludedAn
   EXPECT_NE(pvd.find("timestep=\"0.6"), std::string::npos) << pvd;
 }
 
-TEST(DumpSurface, OtherFormatsBesideAndAnEmptyFrameIsAnEmptyMesh) {
+TEST(DumpSurface, OtherFormatsBesideAndPicturesOfTheWater) {
   auto dir = test::temp_dir("surface-formats");
   test::write_file(dir / "drop.lua", R"(
     pbf.domain{lo = {0, 0, 0}, hi = {0.2, 0.2, 0.2}}
@@ -194,11 +194,12 @@ TEST(DumpSurface, OtherFormatsBesideAndAnEmptyFrameIsAnEmptyMesh) {
     pbf.fix("pbf", "pbf", {})
     pbf.fix("walls", "box", {})
     pbf.fix("surface", "dump/surface", {path = var.OUT .. "/s_*.obj", also = {"ply", "vdb", "vtp"}, every = 5})
+    pbf.fix("water", "dump/image", {path = var.OUT .. "/w_*.png", draw = "surface", every = 5, width = 64, height = 48})
     pbf.run(5)
   )");
   const auto r = run_engine("run " + (dir / "drop.lua").string() + " -v OUT=" + dir.string());
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* f : {"s_00001.obj", "s_00001.ply", "s_00001.vdb", "s_00001.vtp", "s.pvd"})
+  for (const char* f : {"s_00001.obj", "s_00001.ply", "s_00001.vdb", "s_00001.vtp", "s.pvd", "w_00001.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   const std::string obj = read_file(dir / "s_00001.obj");
   EXPECT_NE(obj.find("\nv "), std::string::npos);

@@ -62,10 +62,24 @@ struct SphereShading {
 };
 
 // A solid's surface to draw: triangles in world coordinates, counter-clockwise seen from
-// outside; `container`: the fluid is inside, so the camera is shown the inside.
+// outside; `container`: the fluid is inside, so the camera is shown the inside. With `water`,
+// the water's surface (dump/surface's mesh): its front faces, shaded as water (WaterShading)
+// with the average of their corners' `normals` (per vertex, unit, outward) where given.
 struct SolidSurface {
   const TriangleMesh* mesh = nullptr;
   bool container = false;
+  bool water = false;
+  const std::vector<std::array<float, 3>>* normals = nullptr;
+};
+
+// Water: a body colour lit like the solids, mixed with the sky's colour by Schlick's Fresnel
+// term for water (F0 = 0.02: the surface reflects more the more grazing the view), plus a
+// Blinn-Phong highlight from the spheres' light:
+//   colour = (1 - F) body (ambient + diffuse max(0, n.L)) + F sky + 255 specular max(0, n.H)^64,
+//   F = F0 + (1 - F0) (1 - n.V)^5, V toward the camera.
+struct WaterShading {
+  static constexpr float body[3] = {40, 110, 165}, sky[3] = {215, 232, 245};
+  static constexpr float f0 = 0.02f, specular = 0.6f;
 };
 
 // The solids' shading: a neutral grey, Lambert-lit by the spheres' light (SphereShading) with

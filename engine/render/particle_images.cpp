@@ -9,6 +9,7 @@
 #include "engine/sph/mass.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/distributed/comm.hpp"
+#include "engine/surface/scene_surface.hpp"
 
 namespace pbf {
 
@@ -36,7 +37,11 @@ std::vector<ParamSpec> ParticleImages::params() {
       {"axes", ParamType::Bool, true, "", "draw the axis triad at the bottom left"},
       {"scale_bar", ParamType::Bool, true, "", "draw a scale bar at the bottom right, where one fits"},
       {"solids", ParamType::Bool, true, "",
-       "draw the solids' surfaces (grey; a container shows its inside, its near walls left out)"}};
+       "draw the solids' surfaces (grey; a container shows its inside, its near walls left out)"},
+      ParamSpec{"draw", ParamType::String, std::string("spheres"), "",
+                "what the fluid looks like: spheres (each particle, coloured by 'color') or surface (the water's "
+                "surface as dump/surface makes it, shaded as water; no colour bar)"}
+          .one_of({"spheres", "surface"})};
 }
 
 ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")}), min_(p.real("min")), max_(p.real("max")) {
@@ -55,6 +60,8 @@ ParticleImages::ParticleImages(const Params& p) : color_(Names{p.string("color")
   spec_.axes = p.boolean("axes");
   spec_.scale_bar = p.boolean("scale_bar");
   draw_solids_ = p.boolean("solids");
+  draw_surface_ = p.string("draw") == "surface";
+  if (draw_surface_) spec_.colorbar = false;  // the water has no colour scale
   // A placeholder radius checks every other parameter (and loads the font) now, at pbf.fix.
   ImageSpec check = spec_;
   if (check.radius == 0) check.radius = 1;
@@ -127,6 +134,7 @@ std::size_t ParticleImages::collect_on_root(Simulation& sim) {
 }
 
 const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
+  if (draw_surface_) return render_surface(sim);
   const bool ranks = sim.particles().distributed();
   const std::size_t n = ranks ? collect_on_root(sim) : collect(sim);
   if (ranks && !comm::root()) {
@@ -150,6 +158,28 @@ const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
     for (const SolidBody* s : sim.solid_bodies()) solids.push_back({&s->surface(), s->fluid_inside()});
   renderer_->render(sim.domain(), x.data(), y.data(), z.data(), scalar_.data(), n, lo, hi,
                     fmt::format("t = {:.3f} s", sim.time()), rgb_, solids);
+  return rgb_;
+}
+
+// The water's surface with dump/surface's defaults (anisotropic kernels, voxels of half a
+// spacing, the walls closed), drawn with the solids.
+const std::vector<unsigned char>& ParticleImages::render_surface(Simulation& sim) {
+  const SurfaceSettings settings = scene_surface_settings(sim, 0.5, 2.0);  // collective
+  DumpFields no_fields(Names{});
+  const SurfaceCloud cloud = scene_cloud(sim, no_fields, settings);      // on rank 0
+  if (sim.particles().distributed() && !comm::root()) {
+    rgb_.clear();
+    return rgb_;
+  }
+  const SurfaceMesh water = reconstruct_surface(cloud, settings);
+  std::vector<SolidSurface> surfaces;
+  if (draw_solids_)
+    for (const SolidBody* s : sim.solid_bodies()) surfaces.push_back({&s->surface(), s->fluid_inside()});
+  surfaces.push_back({&water.mesh, false, true, &water.normals});
+  const real none = 0;
+  const double no_value = 0;
+  renderer_->render(sim.domain(), &none, &none, &none, &no_value, 0, 0, 1, fmt::format("t = {:.3f} s", sim.time()), rgb_,
+                    surfaces);
   return rgb_;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Pictures of the particles for dump/image and dump/movie: the parameters both styles take
-// (colour field and scale, camera, size, whether to draw the solids) and the rendering of the
-// current state.
+// (colour field and scale, camera, size, whether to draw the solids, spheres or the water's
+// surface) and the rendering of the current state.
 #include <string>
 #include <vector>
 
@@ -31,11 +31,13 @@ class ParticleImages {
   static double colour_value(const real* values, int components);
   std::size_t collect(Simulation& sim);
   std::size_t collect_on_root(Simulation& sim);
+  const std::vector<unsigned char>& render_surface(Simulation& sim);
   ImageSpec spec_;
   std::optional<ImageRenderer> renderer_;
   DumpFields color_;
   double min_, max_;
   bool draw_solids_ = true;
+  bool draw_surface_ = false;  // draw = "surface": the water's surface instead of spheres
   std::vector<real> values_, positions_;
   std::vector<double> scalar_;
   std::vector<unsigned char> rgb_;

@@ -36,9 +36,31 @@ int clip(const Vec3* in, int count, const Plane& plane, Vec3* out) {
   return kept;
 }
 
-ScreenPolygon project_triangle(const Camera& cam, const TriangleMesh& mesh, std::size_t t, bool container, int width,
-                               int height) {
+// The colour of a water triangle whose normal, in camera axes, is n (facing the camera) and
+// whose corner lies at `corner` (camera space): WaterShading's.
+Rgb water_colour(const Vec3& n, const Vec3& corner) {
+  const Vec3 toward_camera = unit(Vec3{-corner[0], -corner[1], -corner[2]});
+  // Camera axes (x right, y up, z forward) to the light's (z toward the viewer).
+  const Vec3 nl{n[0], n[1], -n[2]}, vl{toward_camera[0], toward_camera[1], -toward_camera[2]};
+  const float* L = SphereShading::light;
+  const double n_dot_l = std::max(0.0, nl[0] * L[0] + nl[1] * L[1] + nl[2] * L[2]);
+  const double cos_view = std::clamp(dot(nl, vl), 0.0, 1.0);
+  const double fresnel = WaterShading::f0 + (1 - WaterShading::f0) * std::pow(1 - cos_view, 5);
+  const Vec3 h = unit(Vec3{L[0] + vl[0], L[1] + vl[1], L[2] + vl[2]});
+  const double highlight = WaterShading::specular * std::pow(std::max(0.0, dot(nl, h)), 64);
+  const double lit = SphereShading::ambient + SphereShading::diffuse * n_dot_l;
+  Rgb rgb;
+  for (int c = 0; c < 3; ++c) {
+    const double v = (1 - fresnel) * WaterShading::body[c] * lit + fresnel * WaterShading::sky[c] + 255 * highlight;
+    rgb[c] = static_cast<unsigned char>(std::clamp(v + 0.5, 0.0, 255.0));
+  }
+  return rgb;
+}
+
+ScreenPolygon project_triangle(const Camera& cam, const SolidSurface& surface, std::size_t t, int width, int height) {
   ScreenPolygon poly;
+  const TriangleMesh& mesh = *surface.mesh;
+  const bool container = surface.container;
   const auto& tri = mesh.triangles[t];
   const Vec3 &v0 = mesh.vertices[tri[0]], &v1 = mesh.vertices[tri[1]], &v2 = mesh.vertices[tri[2]];
   // The outward normal and the side the camera sees: d > 0 when the normal points away.
@@ -90,6 +112,18 @@ ScreenPolygon project_triangle(const Camera& cam, const TriangleMesh& mesh, std:
   poly.c = nc[2] / d - poly.a * cam.cx - poly.b * cam.cy;
   if (!std::isfinite(poly.a) || !std::isfinite(poly.b) || !std::isfinite(poly.c)) return poly;
 
+  if (surface.water) {  // the corners' normals averaged (else the face's), toward the camera
+    Vec3 shade = n;
+    if (surface.normals) {
+      Vec3 sum{0, 0, 0};
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) sum[c] += (*surface.normals)[tri[k]][c];
+      if (finite(sum) && !(sum == Vec3{0, 0, 0})) shade = unit(sum);
+    }
+    Vec3 sc{dot(shade, cam.right), dot(shade, cam.up), dot(shade, cam.forward)};
+    if (dot(sc, corners[0][0]) > 0) sc = {-sc[0], -sc[1], -sc[2]};
+    poly.colour = water_colour(sc, corners[0][0]);
+  } else {
   // Flat Lambert shading with the normal of the side seen, in the light's axes (z toward the viewer).
   const double toward = d > 0 ? -1 : 1;
   const float* L = SphereShading::light;
@@ -97,6 +131,7 @@ ScreenPolygon project_triangle(const Camera& cam, const TriangleMesh& mesh, std:
   const float lit = SolidShading::grey * (SphereShading::ambient + SphereShading::diffuse * lambert);
   const auto grey = static_cast<unsigned char>(std::min(255.0f, lit + 0.5f));
   poly.colour = {grey, grey, grey};
+  }
 
   poly.x_lo = *std::min_element(poly.x, poly.x + count), poly.x_hi = *std::max_element(poly.x, poly.x + count);
   poly.y_lo = *std::min_element(poly.y, poly.y + count), poly.y_hi = *std::max_element(poly.y, poly.y + count);
@@ -116,7 +151,7 @@ std::vector<ScreenPolygon> project_solids(const Camera& cam, const std::vector<S
     const std::size_t m = s.mesh->triangles.size();
 #pragma omp parallel for schedule(static)
     for (std::size_t t = 0; t < m; ++t)
-      polygons[offset + t] = project_triangle(cam, *s.mesh, t, s.container, width, height);
+      polygons[offset + t] = project_triangle(cam, s, t, width, height);
     offset += m;
   }
   return polygons;

@@ -1,10 +1,11 @@
 // Mirror images at the walls and each particle's smoothing kernel (the equations are in
 // engine/surface/surface.hpp): isotropic, or Yu & Turk's ellipsoid from the weighted
-// covariance of the neighbours within R, found by a Jacobi eigen-decomposition.
+// covariance of the neighbours within R, decomposed as a body's inertia is (principal_axes).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "engine/bodies/mass_properties.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/surface/surface_parts.hpp"
 
@@ -49,41 +50,6 @@ SurfaceParticles with_images(const SurfaceCloud& cloud, const SurfaceSettings& s
 }
 
 namespace {
-
-// Eigen-decomposition of a symmetric 3 x 3 matrix by cyclic Jacobi rotations: the eigenvalues
-// in `value`, eigenvector k in column k of `vec`.
-void symmetric_eigen(double m[3][3], double value[3], double vec[3][3]) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) vec[i][j] = i == j;
-  for (int sweep = 0; sweep < 16; ++sweep) {
-    const double off = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
-    const double diag = m[0][0] * m[0][0] + m[1][1] * m[1][1] + m[2][2] * m[2][2];
-    if (off <= 1e-30 * diag || off == 0) break;
-    for (int p = 0; p < 2; ++p)
-      for (int q = p + 1; q < 3; ++q) {
-        if (m[p][q] == 0) continue;
-        const double theta = (m[q][q] - m[p][p]) / (2 * m[p][q]);
-        const double t = (theta >= 0 ? 1 : -1) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < 3; ++k) {  // m = J^T m J, columns then rows
-          const double mkp = m[k][p], mkq = m[k][q];
-          m[k][p] = c * mkp - s * mkq;
-          m[k][q] = s * mkp + c * mkq;
-        }
-        for (int k = 0; k < 3; ++k) {
-          const double mpk = m[p][k], mqk = m[q][k];
-          m[p][k] = c * mpk - s * mqk;
-          m[q][k] = s * mpk + c * mqk;
-        }
-        for (int k = 0; k < 3; ++k) {
-          const double vkp = vec[k][p], vkq = vec[k][q];
-          vec[k][p] = c * vkp - s * vkq;
-          vec[k][q] = s * vkp + c * vkq;
-        }
-      }
-  }
-  for (int k = 0; k < 3; ++k) value[k] = m[k][k];
-}
 
 constexpr double kPoly6 = 315.0 / (64.0 * std::numbers::pi);
 constexpr int kLanes = 4;  // one SSE vector per sum: the eleven sums stay in registers
@@ -194,12 +160,16 @@ std::vector<ParticleKernel> particle_kernels(const SurfaceParticles& p, const Su
         kernels[i] = ellipsoid(a, identity, V);
         kernels[i].isolated = true;
       } else {
-        double C[3][3] = {{xx / W - m[0] * m[0], xy / W - m[0] * m[1], xz / W - m[0] * m[2]},
-                          {0, yy / W - m[1] * m[1], yz / W - m[1] * m[2]},
-                          {0, 0, zz / W - m[2] * m[2]}};
+        Matrix3 C{{{xx / W - m[0] * m[0], xy / W - m[0] * m[1], xz / W - m[0] * m[2]},
+                   {0, yy / W - m[1] * m[1], yz / W - m[1] * m[2]},
+                   {0, 0, zz / W - m[2] * m[2]}}};
         C[1][0] = C[0][1], C[2][0] = C[0][2], C[2][1] = C[1][2];
-        double value[3], vec[3][3];
-        symmetric_eigen(C, value, vec);
+        std::array<double, 3> value;
+        Matrix3 axes;
+        principal_axes(C, value, axes);  // the eigenvalues and eigenvectors (columns), by Jacobi rotations
+        double vec[3][3];
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) vec[r][c] = axes[r][c];
         const double largest = std::max({value[0], value[1], value[2]});
         double a[3];
         for (int k = 0; k < 3; ++k)

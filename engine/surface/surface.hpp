@@ -65,6 +65,7 @@ enum class SurfaceWalls { closed, open, none };
 
 struct SurfaceSettings {
   double spacing = 0;         // the particles' lattice spacing s (m)
+  double mass = 0;            // the mass a particle of spacing s has (kg; what scene_cloud scales volumes by)
   double radius = 0;          // the smoothing radius R (m)
   double voxel = 0;           // the voxel edge asked for (m); each axis's divides the domain
   double iso = 0.5;           // the level of phi that is the surface

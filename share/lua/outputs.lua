@@ -1,5 +1,6 @@
 -- outputs.lua: the optional outputs every scenario offers, switched on with -v variables:
 --   images=T     PNG pictures every T simulated seconds, OUT/image_00000.png, ...
+--   draw=surface the pictures and the movie show the water's surface instead of spheres
 --   movie=PATH   an mp4 of pictures every movie_interval seconds (default 0.02)
 --   vtk=T        ParaView frames every T seconds, OUT/vtk/frame_*.vtu and OUT/vtk/frame.pvd
 --   surface=T    the fluid's surface every T seconds (dump/surface): OUT/surface/surface_*.vtp
@@ -17,6 +18,7 @@ function outputs.add(out, view)
     local p = {}
     for k, v in pairs(view) do p[k] = v end
     for k, v in pairs(extra) do p[k] = v end
+    p.draw = var.draw
     return p
   end
   if var.images then pbf.fix("images", "dump/image", picture{path = out .. "/image_*.png", interval = var.images}) end

@@ -358,6 +358,7 @@ NON_NUMERIC = [
                                        ("vector", '"velocity"', "A")]),
     ("dump/image", "colormap", "string", [("empty", '""', "R"), ("hot", '"hot"', "R"), ("jet", '"jet"', "A")]),
     ("dump/image", "box", "bool", [("false", "false", "A")]),
+    ("dump/image", "draw", "string", [("empty", '""', "R"), ("water", '"water"', "R"), ("surface", '"surface"', "A")]),
     ("dump/image", "colorbar", "bool", [("false", "false", "A")]),
     ("dump/surface", "path", "string", [("empty", '""', "R"), ("nostar", '"out/s.ply"', "R"),
                                         ("stl", '"out/s_*.stl"', "R"), ("vdb", '"out/s_*.vdb"', "A")]),
