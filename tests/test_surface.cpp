@@ -309,6 +309,9 @@ TEST(Surface, BadSettingsNameTheParameterAndAHugeGridIsRefusedWithItsSize) {
   bad = st, bad.voxel = 1e-6;
   bad.memory_limit = 64.0 * (1 << 20);
   fails_with(bad, "MiB");
+  bad = st, bad.radius = 10 * col.s, bad.voxel = col.s / 10;  // kernels 200 voxels across
+  bad.memory_limit = 8.0 * (1 << 20);
+  fails_with(bad, "to list the particles of its blocks");
   SurfaceCloud nan_cloud = col.cloud;
   nan_cloud.z[3] = real(NAN);
   try {

@@ -155,7 +155,8 @@ void register_dump_surface(StyleRegistry& r) {
   params.push_back(ParamSpec{"also", ParamType::StringList, Names{}, "",
                              "more formats of each frame, beside it (same name, their extension)"}.one_of(kFormats));
   params.push_back(ParamSpec{"voxel", ParamType::Real, 0.5, "spacings", "the voxel's edge"}.above_within(0, 100));
-  params.push_back(ParamSpec{"radius", ParamType::Real, 2.0, "spacings", "the smoothing radius R"}.above_within(0, 100));
+  // (A radius of 10 spacings already sums 4,000 neighbours a particle; more is no surface.)
+  params.push_back(ParamSpec{"radius", ParamType::Real, 2.0, "spacings", "the smoothing radius R"}.above_within(0, 10));
   params.push_back(ParamSpec{"kernel", ParamType::String, std::string("anisotropic"), "",
                              "the field: anisotropic (Yu & Turk 2013's kernels: flat surfaces, droplets), isotropic "
                              "(a colour field, kernels of radius R) or spheres (Zhu & Bridson 2005's smoothed union "

@@ -118,6 +118,19 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
           visit(block_index(bx, by, bz));
         }
   };
+  // The particles' lists of blocks, counted before anything is made of them: a kernel far wider
+  // than a block (an absurd radius or a tiny voxel) makes many.
+  double pairs = 0;
+  for (std::size_t i = 0; i < np; ++i) {
+    double spanned = 1;
+    for (int a = 0; a < 3; ++a)
+      spanned *= static_cast<double>(floor_div(box[6 * i + 2 * a + 1] + 2, B) - floor_div(box[6 * i + 2 * a] - 2, B) + 1);
+    pairs += spanned;
+  }
+  if (pairs * sizeof(std::uint32_t) > s.memory_limit)
+    throw Error(fmt::format("the surface's grid would need {} to list the particles of its blocks ({:.3g} entries), "
+                            "more than the memory limit of {}: raise 'memory' or the voxel size, or lower the radius",
+                            mib(pairs * sizeof(std::uint32_t)), pairs, mib(s.memory_limit)));
   f.block_slot.assign(blocks, VoxelBlocks::kEmpty);
   for (std::size_t i = 0; i < np; ++i)
     each_block(i, 0, [&](std::size_t b) { f.block_slot[b] = VoxelBlocks::kFull; });

@@ -278,7 +278,7 @@ NUMERIC = [
     ("dump/surface", "interval", "num", "RRRRRW", [], "as dump/text"),
     ("dump/surface", "every", "int", "RRRRRR", [], "as dump/text"),
     ("dump/surface", "voxel", "num", "RRRRRR", [], "spacings in (0, 100]: 1e300 is no voxel"),
-    ("dump/surface", "radius", "num", "RRRRRR", [], "spacings in (0, 100]"),
+    ("dump/surface", "radius", "num", "RRRRRR", [], "spacings in (0, 10]"),
     ("dump/surface", "iso", "num", "RRRRRR", [], "a level of the smoothed density in (0, 0.99]"),
     ("dump/surface", "sphere_radius", "num", "RRRRRR", [("kernel", '"spheres"')], "spacings in (0, 10]"),
     ("dump/surface", "memory", "num", "RRRRRA", [], "MiB > 0; 1e300 is no limit, legal"),

@@ -1,4 +1,4 @@
--- fix/compute dump/surface: radius = -1: refused (spacings in (0, 100])
+-- fix/compute dump/surface: radius = -1: refused (spacings in (0, 10])
 pbf.domain{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.1}}
 pbf.kernel_radius(0.02)
 pbf.timestep(0.001)
