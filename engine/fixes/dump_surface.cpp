@@ -71,11 +71,8 @@ class DumpSurface : public Dump {
         throw Error(fmt::format("parameter 'fields': \"{}\" is not a value a surface can carry (the vertices have "
                                 "their own positions); give fields such as velocity, speed, density",
                                 f));
-    std::string stem = std::filesystem::path(pattern()).filename().string();
-    stem = stem.substr(0, stem.find('*'));
-    while (!stem.empty() && (stem.back() == '_' || stem.back() == '-' || stem.back() == '.')) stem.pop_back();
-    if (stem.empty()) stem = "surface";
-    if (collection_.empty()) collection_ = (std::filesystem::path(pattern()).parent_path() / (stem + ".pvd")).string();
+    if (collection_.empty())
+      collection_ = (std::filesystem::path(pattern()).parent_path() / (stem("surface") + ".pvd")).string();
   }
 
   bool runs_distributed() const override { return true; }  // gathered on rank 0

@@ -59,10 +59,7 @@ class DumpVtk : public Dump {
  public:
   DumpVtk(const std::string& id, const Params& p) : Dump(id, "dump/vtk", p), collection_(p.string("collection")) {
     // out/frame_*.vtu -> "frame": names the collection (out/frame.pvd) and the solids' files.
-    stem_ = std::filesystem::path(pattern()).filename().string();
-    stem_ = stem_.substr(0, stem_.find('*'));
-    while (!stem_.empty() && (stem_.back() == '_' || stem_.back() == '-' || stem_.back() == '.')) stem_.pop_back();
-    if (stem_.empty()) stem_ = "frames";
+    stem_ = stem("frames");
     if (collection_.empty()) collection_ = (std::filesystem::path(pattern()).parent_path() / (stem_ + ".pvd")).string();
   }
 

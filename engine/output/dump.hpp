@@ -31,6 +31,7 @@ class Dump : public Fix {
   virtual void write_frame(Simulation& sim, const std::string& path, std::int64_t frame) = 0;
   std::string frame_path(std::int64_t frame) const;
   const std::string& pattern() const { return pattern_.pattern(); }
+  std::string stem(const std::string& fallback) const { return pattern_.stem(fallback); }  // PathPattern::stem
   DumpFields& fields() { return fields_; }
 
  private:

@@ -28,4 +28,11 @@ void create_parent_directory(const std::string& path) {
   if (!std::filesystem::is_directory(dir)) throw Error(fmt::format("cannot create the directory '{}'", dir.string()));
 }
 
+std::string PathPattern::stem(const std::string& fallback) const {
+  std::string s = std::filesystem::path(pattern_).filename().string();
+  s = s.substr(0, s.find('*'));
+  while (!s.empty() && (s.back() == '_' || s.back() == '-' || s.back() == '.')) s.pop_back();
+  return s.empty() ? fallback : s;
+}
+
 }  // namespace pbf

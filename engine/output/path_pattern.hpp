@@ -10,6 +10,9 @@ class PathPattern {
   // `star` says what '*' stands for, in the error when the pattern has none or several.
   PathPattern(std::string pattern, const char* star);
   const std::string& pattern() const { return pattern_; }
+  // The file name's part before '*', without a trailing '_', '-' or '.' ("out/frame_*.vtu" ->
+  // "frame"), or `fallback` where nothing is left: what names a series' collection.
+  std::string stem(const std::string& fallback) const;
   // The pattern with '*' replaced by `text`.
   std::string with(const std::string& text) const;
   // Creates the directory the files go to (and its parents); an error if that fails.
