@@ -1,10 +1,12 @@
 // phi on blocks of voxels: each particle is binned to the blocks its kernel's bounding box
 // reaches (grown by one voxel downwards, so that every cube the surface crosses has its lower
-// corner in a computed block), then each block adds up its particles, in their order, row by
-// row over the span of the row inside the ellipsoid (a quadratic in x). At closed or open walls
-// the first layer of voxels beyond a face gets 2 iso - phi of its mirror voxel inside (where
-// that is inside the surface; 0 elsewhere, as every layer further out), so that the surface
-// crosses halfway between them: on the face.
+// corner in a computed block); the band of blocks that kernels of particles without a full
+// neighbourhood reach is computed (then, in rounds, any full block the surface turns out to
+// reach), each block adding up its particles, in their order, row by row over the span of the
+// row inside the ellipsoid (a quadratic in x). At closed or open walls the first layer of voxels
+// beyond a face gets 2 iso - phi of its mirror voxel inside (where that is inside the surface; 0
+// elsewhere, as every layer further out), so that the surface crosses halfway between them: on
+// the face. Last, the smoothing passes, and the droplets added after them.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
