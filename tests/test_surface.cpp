@@ -2,8 +2,10 @@
 // clouds whose surface is known: a resting column in a box, a sphere, a lone droplet.
 #include <omp.h>
 
+#include <barrier>
 #include <cmath>
 #include <numbers>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -264,6 +266,97 @@ TEST(Surface, SameBitsAtAnyThreadCount) {
   EXPECT_EQ(one.attributes[0].values, many.attributes[0].values);
   EXPECT_EQ(manifold_defect(many.mesh), "");
   EXPECT_EQ(self_intersections(many.mesh, col.s), 0u);
+}
+
+// Parts that agree through a barrier, as ranks do through MPI (scene_surface).
+struct Agreement {
+  explicit Agreement(int parts) : barrier(parts), lists(parts), errors(parts) {}
+  void agree(int r, std::vector<std::int64_t>& blocks, std::string& error) {
+    lists[r] = blocks, errors[r] = error;
+    barrier.arrive_and_wait();
+    blocks.clear(), error.clear();
+    for (std::size_t k = 0; k < lists.size(); ++k) {
+      blocks.insert(blocks.end(), lists[k].begin(), lists[k].end());
+      if (error.empty()) error = errors[k];
+    }
+    barrier.arrive_and_wait();  // before anyone's next round overwrites the lists
+  }
+  std::barrier<> barrier;
+  std::vector<std::vector<std::int64_t>> lists;
+  std::vector<std::string> errors;
+};
+
+TEST(Surface, SlabsMeshedApartJoinToTheWholeBitForBit) {
+  // A slope of water 150 spacings long (from 20 layers high down to 4) with its particles
+  // disturbed, and a blob and droplets flying above it, in a long tank.
+  const double s = 0.01;
+  const double hi[3] = {160 * s, 8 * s, 40 * s};
+  SurfaceCloud cloud;
+  auto add = [&](double x, double y, double z) {
+    cloud.x.push_back(real(x)), cloud.y.push_back(real(y)), cloud.z.push_back(real(z));
+    cloud.volume.push_back(s * s * s);
+  };
+  for (int i = 0; i < 150; ++i)
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < 20 - 16 * i / 150; ++k) {
+        const double n = double(cloud.size());
+        add((i + 0.5 + 0.2 * std::sin(1.7 * n)) * s, (j + 0.5) * s, (k + 0.5 + 0.2 * std::sin(0.9 * n)) * s);
+      }
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 6; ++k) add((76 + i) * s, (2 + j) * s, (30 + k) * s);
+  for (int d = 0; d < 12; ++d) add((10 + 12.3 * d) * s, 4 * s, (26 + (d % 3)) * s);
+  cloud.attributes.push_back({"speed", 1, std::vector<double>(cloud.size())});
+  for (std::size_t i = 0; i < cloud.size(); ++i) cloud.attributes[0].values[i] = std::cos(double(i));
+  for (SurfaceWalls walls : {SurfaceWalls::closed, SurfaceWalls::open}) {
+    SurfaceSettings st = settings_for(s, hi);
+    st.walls = walls;
+    const SurfaceMesh whole = reconstruct_surface(cloud, st);
+
+    constexpr int kParts = 3;
+    SurfaceSlabs slabs(st);
+    ASSERT_EQ(slabs.axis, 0);
+    std::vector<std::int64_t> count(static_cast<std::size_t>(slabs.layers), 0);
+    for (std::size_t i = 0; i < cloud.size(); ++i) ++count[static_cast<std::size_t>(slabs.layer(cloud.x[i]))];
+    slabs.cut(count, kParts);
+    Agreement agreement(kParts);
+    std::vector<SurfacePiece> pieces(kParts);
+    std::vector<std::string> failed(kParts);
+    std::vector<std::thread> parts;
+    for (int r = 0; r < kParts; ++r) {
+      SurfacePart part = slabs.part(r);
+      EXPECT_LT(part.first, part.end) << "part " << r << " has no blocks";
+      SurfaceCloud mine;  // the particles it needs, in the whole's order
+      mine.attributes.push_back({"speed", 1, {}});
+      for (std::size_t i = 0; i < cloud.size(); ++i)
+        if (slabs.needs(r, cloud.x[i])) {
+          mine.x.push_back(cloud.x[i]), mine.y.push_back(cloud.y[i]), mine.z.push_back(cloud.z[i]);
+          mine.volume.push_back(cloud.volume[i]);
+          mine.attributes[0].values.push_back(cloud.attributes[0].values[i]);
+        }
+      EXPECT_LT(mine.size(), cloud.size() * 3 / 4) << "part " << r << " needs nearly every particle";
+      part.agree = [&agreement, r](std::vector<std::int64_t>& blocks, std::string& error) {
+        agreement.agree(r, blocks, error);
+      };
+      parts.emplace_back([&, r, part, mine = std::move(mine)] {
+        try {
+          pieces[r] = reconstruct_surface_part(mine, st, part);
+        } catch (const std::exception& e) {
+          failed[r] = e.what();
+        }
+      });
+    }
+    for (auto& t : parts) t.join();
+    for (int r = 0; r < kParts; ++r) ASSERT_EQ(failed[r], "") << "part " << r;
+    const SurfaceMesh joined = join_surface_pieces(pieces, st);
+    ASSERT_GT(whole.mesh.triangles.size(), 1000u);
+    EXPECT_EQ(joined.mesh.vertices, whole.mesh.vertices);
+    EXPECT_EQ(joined.mesh.triangles, whole.mesh.triangles);
+    EXPECT_EQ(joined.normals, whole.normals);
+    ASSERT_EQ(joined.attributes.size(), 1u);
+    EXPECT_EQ(joined.attributes[0].values, whole.attributes[0].values);
+    EXPECT_EQ(manifold_defect(joined.mesh, walls == SurfaceWalls::open), "");
+  }
 }
 
 TEST(Surface, VelocityOnTheVerticesIsTheFluids) {

@@ -13,7 +13,7 @@
 //
 // Sizes are in particle spacings (the lattice spacing of the particles' mass): a voxel of half
 // a spacing and a smoothing radius of two resolve the surface at the particles' own scale.
-// A distributed run gathers the particles on rank 0, which meshes and writes.
+// In a distributed run each rank meshes a slab of the domain, and rank 0 joins and writes.
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -75,7 +75,7 @@ class DumpSurface : public Dump {
       collection_ = (std::filesystem::path(pattern()).parent_path() / (stem("surface") + ".pvd")).string();
   }
 
-  bool runs_distributed() const override { return true; }  // gathered on rank 0
+  bool runs_distributed() const override { return true; }  // meshed in slabs, joined on rank 0
 
   void save_state(ByteWriter& w) const override {
     Dump::save_state(w);
@@ -100,7 +100,7 @@ class DumpSurface : public Dump {
  private:
   void write_frame(Simulation& sim, const std::string& path, std::int64_t) override {
     const SurfaceSettings s = settings(sim);
-    const SurfaceCloud cloud = scene_cloud(sim, fields(), s);
+    const SurfaceMesh mesh = scene_surface(sim, fields(), s);  // collective
     std::filesystem::path base(path);
     const std::string vtp = base.replace_extension(".vtp").string();
     if (std::find(formats_.begin(), formats_.end(), "vtp") != formats_.end()) {
@@ -108,7 +108,6 @@ class DumpSurface : public Dump {
       frames_.emplace_back(sim.time(), std::filesystem::path(vtp).lexically_relative(dir.empty() ? "." : dir).string());
     }
     if (!comm::root()) return;
-    const SurfaceMesh mesh = reconstruct_surface(cloud, s);
     const std::string comment = fmt::format("pbfengine dump/surface '{}', t = {:.9g} s, step {}", id(), sim.time(), sim.step());
     for (const std::string& format : formats_) {
       const std::string file = std::filesystem::path(path).replace_extension("." + format).string();

@@ -166,12 +166,11 @@ const std::vector<unsigned char>& ParticleImages::render(Simulation& sim) {
 const std::vector<unsigned char>& ParticleImages::render_surface(Simulation& sim) {
   const SurfaceSettings settings = scene_surface_settings(sim, 0.5, 2.0);  // collective
   DumpFields no_fields(Names{});
-  const SurfaceCloud cloud = scene_cloud(sim, no_fields, settings);      // on rank 0
+  const SurfaceMesh water = scene_surface(sim, no_fields, settings);     // on rank 0
   if (sim.particles().distributed() && !comm::root()) {
     rgb_.clear();
     return rgb_;
   }
-  const SurfaceMesh water = reconstruct_surface(cloud, settings);
   std::vector<SolidSurface> surfaces;
   if (draw_solids_)
     for (const SolidBody* s : sim.solid_bodies()) surfaces.push_back({&s->surface(), s->fluid_inside()});

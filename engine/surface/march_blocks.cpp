@@ -1,11 +1,9 @@
-// Marching cubes over the blocks of voxels. Every edge the surface crosses is one vertex,
-// owned by the block that holds the edge's lower voxel. Two passes over the blocks, in
-// parallel: the first lists each block's crossed edges (so that a prefix sum numbers the
-// vertices block by block, in a fixed order), the second makes the block's vertices and the
-// triangles of the cubes whose lower corner it holds, finding a vertex on an edge of the next
-// block up by a binary search in that block's list. Cubes follow engine/surface/cube_cases.
+// Marching cubes over a part's blocks of voxels. Every edge the surface crosses is one vertex,
+// owned by the block that holds the edge's lower voxel. Each block, in parallel, makes its
+// vertices (in the order of their edges) and the triangles of the cubes whose lower corner it
+// holds, naming a vertex on an edge of a block above by that block and the edge:
+// join_surface_pieces (surface_pieces.cpp) numbers them. Cubes follow engine/surface/cube_cases.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -31,99 +29,86 @@ inline int padded_at(int i, int j, int k) { return ((k + 1) * P + (j + 1)) * P +
 
 }  // namespace
 
-SurfaceMesh march_blocks(const VoxelBlocks& f, const SurfaceSettings& s) {
-  const std::size_t slots = f.slots();
+SurfacePiece march_blocks(const VoxelBlocks& f, const SurfaceSettings& s, const SurfacePart& part) {
   const float iso = static_cast<float>(s.iso);
   const int step[3] = {1, P, P * P};
-
-  // Pass 1: each block's crossed edges, in order of their keys.
-  std::vector<std::vector<EdgeKey>> keys(slots);
-#pragma omp parallel
-  {
-    std::vector<float> pad(static_cast<std::size_t>(P) * P * P);
-#pragma omp for schedule(dynamic, 1)
-    for (std::size_t sl = 0; sl < slots; ++sl) {
-      f.padded(f.slot_block[0][sl], f.slot_block[1][sl], f.slot_block[2][sl], pad.data());
-      auto& list = keys[sl];
-      for (int k = 0; k < B; ++k)
-        for (int j = 0; j < B; ++j)
-          for (int i = 0; i < B; ++i) {
-            const int at = padded_at(i, j, k);
-            const bool in = pad[at] > iso;
-            for (int a = 0; a < 3; ++a)
-              if ((pad[at + step[a]] > iso) != in) list.push_back(static_cast<EdgeKey>(((k * B + j) * B + i) * 3 + a));
-          }
-    }
+  // The part's blocks, in (z, y, x) order: the order the pieces join in.
+  std::vector<std::size_t> order;
+  for (std::size_t sl = 0; sl < f.slots(); ++sl) {
+    const long along = f.slot_block[part.axis][sl];
+    if (along >= part.first && along < part.end) order.push_back(sl);
   }
-  std::vector<std::uint32_t> first_vertex(slots + 1, 0);
-  for (std::size_t sl = 0; sl < slots; ++sl) {
-    if (first_vertex[sl] + keys[sl].size() > UINT32_MAX)
-      throw Error("the surface has more than 4.29 x 10^9 vertices: raise the voxel size");
-    first_vertex[sl + 1] = first_vertex[sl] + static_cast<std::uint32_t>(keys[sl].size());
-  }
-
-  SurfaceMesh out;
-  const std::size_t nv = first_vertex[slots];
-  out.mesh.vertices.resize(nv);
-  out.normals.resize(nv);
-  std::vector<char> on_wall(s.walls == SurfaceWalls::open ? nv : 0, 0);
-  std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(slots);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    for (int c = 2; c >= 0; --c)
+      if (f.slot_block[c][a] != f.slot_block[c][b]) return f.slot_block[c][a] < f.slot_block[c][b];
+    return false;
+  });
+  const std::size_t nb = order.size();
+  // Each block's piece, made in parallel, then laid end to end.
+  struct BlockPiece {
+    std::vector<EdgeKey> keys;
+    std::vector<std::array<double, 3>> vertices;
+    std::vector<std::array<float, 3>> normals;
+    std::vector<std::uint8_t> on_wall;
+    std::vector<std::array<std::uint32_t, 3>> corners;
+  };
+  std::vector<BlockPiece> pieces(nb);
   const CubeCases& cases = cube_cases();
   int corner_offset[8][3];
   for (int c = 0; c < 8; ++c) corner_offset[c][0] = c & 1, corner_offset[c][1] = (c >> 1) & 1, corner_offset[c][2] = (c >> 2) & 1;
 
-  // Pass 2: vertices and triangles.
-  std::atomic<bool> broken = false;
 #pragma omp parallel
   {
     std::vector<float> pad(static_cast<std::size_t>(P) * P * P);
     std::vector<std::int32_t> local(static_cast<std::size_t>(B) * B * B * 3, -1);  // key -> vertex of this block
 #pragma omp for schedule(dynamic, 1)
-    for (std::size_t sl = 0; sl < slots; ++sl) {
+    for (std::size_t o = 0; o < nb; ++o) {
+      const std::size_t sl = order[o];
       const long bc[3] = {f.slot_block[0][sl], f.slot_block[1][sl], f.slot_block[2][sl]};
       f.padded(bc[0], bc[1], bc[2], pad.data());
-      const auto& list = keys[sl];
-      for (std::size_t m = 0; m < list.size(); ++m) {
-        const int key = list[m], a = key % 3, voxel = key / 3;
-        const int l[3] = {voxel % B, (voxel / B) % B, voxel / (B * B)};
-        const int at = padded_at(l[0], l[1], l[2]);
-        const double phi_p = pad[at], phi_q = pad[at + step[a]];
-        const double t = std::clamp((s.iso - phi_p) / (phi_q - phi_p), 1e-3, 1 - 1e-3);
-        const std::uint32_t vi = first_vertex[sl] + static_cast<std::uint32_t>(m);
-        local[key] = static_cast<std::int32_t>(vi);
-        auto& x = out.mesh.vertices[vi];
-        double grad[3];
-        for (int c = 0; c < 3; ++c) {
-          x[c] = f.centre(c, bc[c] * B + l[c]) + (c == a ? t * f.v[c] : 0.0);
-          const double gp = (pad[at + step[c]] - pad[at - step[c]]) / (2 * f.v[c]);
-          const double gq = (pad[at + step[a] + step[c]] - pad[at + step[a] - step[c]]) / (2 * f.v[c]);
-          grad[c] = (1 - t) * gp + t * gq;
-        }
-        double len = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
-        if (!(len > 0)) {  // flat: the edge's own direction
-          grad[0] = grad[1] = grad[2] = 0, grad[a] = phi_q - phi_p, len = std::fabs(grad[a]);
-        }
-        for (int c = 0; c < 3; ++c) out.normals[vi][c] = static_cast<float>(-grad[c] / len);
-        if (!on_wall.empty()) {
-          const long g = bc[a] * B + l[a];
-          on_wall[vi] = (s.wall[2 * a] && g == -1) || (s.wall[2 * a + 1] && g == f.n[a] - 1);
-        }
-      }
-      // The vertex on the cube edge from local voxel q along axis a.
-      auto vertex = [&](int q0, int q1, int q2, int a) -> std::uint32_t {
+      BlockPiece& piece = pieces[o];
+      // The vertices: one on each edge from a voxel of the block along +x, +y, +z that the
+      // surface crosses, in the order of their keys.
+      for (int k = 0; k < B; ++k)
+        for (int j = 0; j < B; ++j)
+          for (int i = 0; i < B; ++i) {
+            const int at = padded_at(i, j, k);
+            const bool in = pad[at] > iso;
+            for (int a = 0; a < 3; ++a) {
+              if ((pad[at + step[a]] > iso) == in) continue;
+              const EdgeKey key = static_cast<EdgeKey>(((k * B + j) * B + i) * 3 + a);
+              local[key] = static_cast<std::int32_t>(piece.keys.size());
+              piece.keys.push_back(key);
+              const int l[3] = {i, j, k};
+              const double phi_p = pad[at], phi_q = pad[at + step[a]];
+              const double t = std::clamp((s.iso - phi_p) / (phi_q - phi_p), 1e-3, 1 - 1e-3);
+              std::array<double, 3> x;
+              double grad[3];
+              for (int c = 0; c < 3; ++c) {
+                x[c] = f.centre(c, bc[c] * B + l[c]) + (c == a ? t * f.v[c] : 0.0);
+                const double gp = (pad[at + step[c]] - pad[at - step[c]]) / (2 * f.v[c]);
+                const double gq = (pad[at + step[a] + step[c]] - pad[at + step[a] - step[c]]) / (2 * f.v[c]);
+                grad[c] = (1 - t) * gp + t * gq;
+              }
+              double len = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
+              if (!(len > 0)) {  // flat: the edge's own direction
+                grad[0] = grad[1] = grad[2] = 0, grad[a] = phi_q - phi_p, len = std::fabs(grad[a]);
+              }
+              piece.vertices.push_back(x);
+              piece.normals.push_back({static_cast<float>(-grad[0] / len), static_cast<float>(-grad[1] / len),
+                                       static_cast<float>(-grad[2] / len)});
+              const long g = bc[a] * B + l[a];
+              piece.on_wall.push_back((s.wall[2 * a] && g == -1) || (s.wall[2 * a + 1] && g == f.n[a] - 1));
+            }
+          }
+      // The triangles of the cubes whose lower corner is in the block; a corner on an edge of a
+      // block above is named by that block and the edge's key there.
+      auto corner = [&](int q0, int q1, int q2, int a) -> std::uint32_t {
         if (q0 < B && q1 < B && q2 < B) return static_cast<std::uint32_t>(local[((q2 * B + q1) * B + q0) * 3 + a]);
         const int up[3] = {q0 >= B, q1 >= B, q2 >= B};
-        const std::int32_t other = f.slot(bc[0] + up[0], bc[1] + up[1], bc[2] + up[2]);
-        if (other < 0) {  // cannot happen: the blocks reach a voxel below every kernel
-          broken = true;
-          return 0;
-        }
-        const EdgeKey key = static_cast<EdgeKey>((((q2 - up[2] * B) * B + (q1 - up[1] * B)) * B + (q0 - up[0] * B)) * 3 + a);
-        const auto& theirs = keys[static_cast<std::size_t>(other)];
-        const auto it = std::lower_bound(theirs.begin(), theirs.end(), key);
-        return first_vertex[static_cast<std::size_t>(other)] + static_cast<std::uint32_t>(it - theirs.begin());
+        const int key = (((q2 - up[2] * B) * B + (q1 - up[1] * B)) * B + (q0 - up[0] * B)) * 3 + a;
+        return static_cast<std::uint32_t>(((up[0] | up[1] << 1 | up[2] << 2) << 16) | key);
       };
-      auto& tris = triangles[sl];
       for (int k = 0; k < B; ++k)
         for (int j = 0; j < B; ++j)
           for (int i = 0; i < B; ++i) {
@@ -136,38 +121,34 @@ SurfaceMesh march_blocks(const VoxelBlocks& f, const SurfaceSettings& s) {
               std::array<std::uint32_t, 3> tri;
               for (int v = 0; v < 3; ++v) {
                 const int e = cases.edges[mask][3 * t + v], c = edge_corner(e);
-                tri[v] = vertex(i + corner_offset[c][0], j + corner_offset[c][1], k + corner_offset[c][2], edge_axis(e));
+                tri[v] = corner(i + corner_offset[c][0], j + corner_offset[c][1], k + corner_offset[c][2], edge_axis(e));
               }
-              tris.push_back(tri);
+              piece.corners.push_back(tri);
             }
           }
-      for (const EdgeKey key : list) local[key] = -1;
+      for (const EdgeKey key : piece.keys) local[key] = -1;
     }
   }
 
-  if (broken) throw Error("internal error: the surface crosses into a block of voxels that was not computed");
-  std::size_t total = 0;
-  for (const auto& t : triangles) total += t.size();
-  out.mesh.triangles.reserve(total);
-  for (const auto& t : triangles)
-    for (const auto& tri : t)
-      if (on_wall.empty() || !(on_wall[tri[0]] && on_wall[tri[1]] && on_wall[tri[2]])) out.mesh.triangles.push_back(tri);
-  if (!on_wall.empty()) {  // open walls: drop the vertices only the wetted walls used
-    std::vector<std::uint32_t> renumber(nv, UINT32_MAX);
-    for (const auto& tri : out.mesh.triangles)
-      for (std::uint32_t v : tri) renumber[v] = 0;
-    std::uint32_t kept = 0;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (renumber[v] == 0) {
-        renumber[v] = kept;
-        out.mesh.vertices[kept] = out.mesh.vertices[v];
-        out.normals[kept] = out.normals[v];
-        ++kept;
-      }
-    out.mesh.vertices.resize(kept);
-    out.normals.resize(kept);
-    for (auto& tri : out.mesh.triangles)
-      for (std::uint32_t& v : tri) v = renumber[v];
+  SurfacePiece out;
+  out.blocks.resize(nb);
+  out.first_vertex.resize(nb + 1, 0);
+  out.first_triangle.resize(nb + 1, 0);
+  for (std::size_t o = 0; o < nb; ++o) {
+    for (int c = 0; c < 3; ++c) out.blocks[o][c] = f.slot_block[c][order[o]];
+    if (out.first_vertex[o] + pieces[o].keys.size() > UINT32_MAX)
+      throw Error("the surface has more than 4.29 x 10^9 vertices: raise the voxel size");
+    out.first_vertex[o + 1] = out.first_vertex[o] + static_cast<std::uint32_t>(pieces[o].keys.size());
+    out.first_triangle[o + 1] = out.first_triangle[o] + static_cast<std::uint32_t>(pieces[o].corners.size());
+  }
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  for (auto& piece : pieces) {
+    append(out.keys, piece.keys);
+    append(out.vertices, piece.vertices);
+    append(out.normals, piece.normals);
+    append(out.on_wall, piece.on_wall);
+    append(out.corners, piece.corners);
+    piece = BlockPiece{};
   }
   return out;
 }

@@ -1,10 +1,13 @@
 #include "engine/surface/scene_surface.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "engine/core/simulation.hpp"
+#include "engine/core/error.hpp"
 #include "engine/distributed/comm.hpp"
+#include "engine/io/bytes.hpp"
 #include "engine/sph/mass.hpp"
 
 namespace pbf {
@@ -25,48 +28,55 @@ SurfaceSettings scene_surface_settings(Simulation& sim, double voxel_spacings, d
   return s;
 }
 
-SurfaceCloud scene_cloud(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings) {
+namespace {
+
+// Each particle's record: id, x, y, z, mass, then each field's components.
+struct Records {
+  std::size_t width = 5;
+  std::vector<double> values;
+  std::vector<std::string> names;
+  std::vector<int> components;
+  std::size_t size() const { return values.size() / width; }
+};
+
+Records local_records(Simulation& sim, DumpFields& fields) {
   if (sim.particles().distributed()) sim.refresh_neighbors();  // derived fields read neighbours
   const auto& P = sim.particles();
   const std::size_t n = P.size();
+  Records r;
   std::vector<std::vector<const real*>> columns;
-  std::size_t width = 5;  // id, x, y, z, mass, then each field's components
   for (std::size_t k = 0; k < fields.size(); ++k) {
     columns.push_back(fields.columns(sim, k));
-    width += columns.back().size();
+    r.names.push_back(fields.names()[k]);
+    r.components.push_back(static_cast<int>(columns.back().size()));
+    r.width += columns.back().size();
   }
-  std::vector<double> mine(n * width);
+  r.values.resize(n * r.width);
   for (std::size_t i = 0; i < n; ++i) {
-    double* r = &mine[i * width];
-    r[0] = static_cast<double>(P.ids()[i]), r[1] = P.x()[i], r[2] = P.y()[i], r[3] = P.z()[i], r[4] = P.mass()[i];
+    double* row = &r.values[i * r.width];
+    row[0] = static_cast<double>(P.ids()[i]), row[1] = P.x()[i], row[2] = P.y()[i], row[3] = P.z()[i];
+    row[4] = P.mass()[i];
     std::size_t at = 5;
     for (const auto& field : columns)
-      for (const real* c : field) r[at++] = c[i];
+      for (const real* c : field) row[at++] = c[i];
   }
-  std::vector<double> all;
-  if (P.distributed()) {
-    const auto gathered = comm::gather_bytes(
-        std::span<const char>(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(double)));
-    for (const auto& bytes : gathered) {
-      const std::size_t old = all.size();
-      all.resize(old + bytes.size() / sizeof(double));
-      std::memcpy(all.data() + old, bytes.data(), bytes.size());
-    }
-  } else {
-    all = std::move(mine);
-  }
-  const std::size_t total = all.size() / width;
+  return r;
+}
+
+// The records (`values`, `width` each) as a cloud, in id order.
+SurfaceCloud cloud_of(const Records& shape, const std::vector<double>& values, const SurfaceSettings& settings) {
+  const std::size_t width = shape.width, total = values.size() / width;
   std::vector<std::size_t> order(total);
   for (std::size_t i = 0; i < total; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a * width] < all[b * width]; });
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a * width] < values[b * width]; });
   SurfaceCloud c;
   c.x.resize(total), c.y.resize(total), c.z.resize(total), c.volume.resize(total);
   const double unit = settings.spacing * settings.spacing * settings.spacing / (settings.mass > 0 ? settings.mass : 1);
-  for (std::size_t k = 0; k < fields.size(); ++k)
-    c.attributes.push_back({fields.names()[k], static_cast<int>(columns[k].size()),
-                            std::vector<double>(total * columns[k].size())});
+  for (std::size_t k = 0; k < shape.names.size(); ++k)
+    c.attributes.push_back({shape.names[k], shape.components[k],
+                            std::vector<double>(total * static_cast<std::size_t>(shape.components[k]))});
   for (std::size_t i = 0; i < total; ++i) {
-    const double* r = &all[order[i] * width];
+    const double* r = &values[order[i] * width];
     c.x[i] = static_cast<real>(r[1]), c.y[i] = static_cast<real>(r[2]), c.z[i] = static_cast<real>(r[3]);
     c.volume[i] = r[4] * unit;
     std::size_t at = 5;
@@ -74,6 +84,148 @@ SurfaceCloud scene_cloud(Simulation& sim, DumpFields& fields, const SurfaceSetti
       for (int comp = 0; comp < a.components; ++comp) a.values[static_cast<std::size_t>(comp) * total + i] = r[at++];
   }
   return c;
+}
+
+// Every rank's `bytes` to every rank, in rank order (through rank 0).
+std::vector<std::vector<char>> everyones(const std::vector<char>& bytes) {
+  const auto gathered = comm::gather_bytes(bytes);
+  ByteWriter w;
+  for (const auto& g : gathered) {
+    w.put<std::uint64_t>(g.size());
+    w.put_array(g.data(), g.size());
+  }
+  std::vector<char> all(w.bytes().begin(), w.bytes().end());
+  comm::broadcast(all);
+  ByteReader r(reinterpret_cast<const unsigned char*>(all.data()), all.size(), "the ranks' surface blocks");
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(comm::ranks()));
+  for (auto& o : out) r.get_array(o, r.get<std::uint64_t>());
+  return out;
+}
+
+// The first rank's error (empty: none), on every rank.
+std::string first_error(const std::string& mine) {
+  for (const auto& e : everyones(std::vector<char>(mine.begin(), mine.end())))
+    if (!e.empty()) return std::string(e.begin(), e.end());
+  return {};
+}
+
+void put_piece(ByteWriter& w, const SurfacePiece& p) {
+  auto vector = [&](const auto& v) {
+    w.put<std::uint64_t>(v.size());
+    w.put_array(v.data(), v.size());
+  };
+  vector(p.blocks), vector(p.first_vertex), vector(p.first_triangle), vector(p.keys), vector(p.vertices);
+  vector(p.normals), vector(p.on_wall), vector(p.corners);
+  for (const auto& a : p.attributes) vector(a.values);
+}
+
+SurfacePiece get_piece(ByteReader& r, const SurfaceCloud& shape) {
+  SurfacePiece p;
+  auto vector = [&](auto& v) { r.get_array(v, r.get<std::uint64_t>()); };
+  vector(p.blocks), vector(p.first_vertex), vector(p.first_triangle), vector(p.keys), vector(p.vertices);
+  vector(p.normals), vector(p.on_wall), vector(p.corners);
+  for (const auto& a : shape.attributes) {
+    p.attributes.push_back({a.name, a.components, {}});
+    vector(p.attributes.back().values);
+  }
+  return p;
+}
+
+// A distributed run: each rank meshes a slab of blocks across the domain's longest axis, with
+// about as many particles as the others, from its particles and those within reach of the
+// slab (SurfaceSlabs::needs); rank 0 joins the pieces.
+SurfaceMesh distributed_surface(const Records& mine, const SurfaceSettings& s) {
+  const std::size_t n = mine.size(), width = mine.width;
+  {  // the particles checked here, so that every rank stops together
+    const SurfaceCloud local = cloud_of(mine, mine.values, s);
+    std::string error;
+    try {
+      check_surface_input(local, s);
+    } catch (const Error& e) {
+      error = e.what();
+    }
+    error = first_error(error);
+    if (!error.empty()) throw Error(error);
+  }
+  SurfaceSlabs slabs(s);
+  std::vector<std::int64_t> count(static_cast<std::size_t>(slabs.layers), 0);
+  for (std::size_t i = 0; i < n; ++i) ++count[static_cast<std::size_t>(slabs.layer(mine.values[i * width + 1 + slabs.axis]))];
+  comm::sum(count);
+  const int ranks = comm::ranks();
+  slabs.cut(count, ranks);
+  // Each particle to every rank whose slab it reaches.
+  std::vector<std::vector<char>> send(static_cast<std::size_t>(ranks)), received;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int r = 0; r < ranks; ++r)
+      if (slabs.needs(r, mine.values[i * width + 1 + slabs.axis])) {
+        const char* row = reinterpret_cast<const char*>(&mine.values[i * width]);
+        send[static_cast<std::size_t>(r)].insert(send[static_cast<std::size_t>(r)].end(), row, row + width * sizeof(double));
+      }
+  comm::all_to_all_bytes(send, received);
+  send.clear();
+  std::vector<double> values;
+  for (const auto& bytes : received) {
+    const std::size_t old = values.size();
+    values.resize(old + bytes.size() / sizeof(double));
+    std::memcpy(values.data() + old, bytes.data(), bytes.size());
+  }
+  received.clear();
+  const SurfaceCloud cloud = cloud_of(mine, values, s);
+  values.clear();
+
+  SurfacePart part = slabs.part(comm::rank());
+  bool agreed_error = false;
+  part.agree = [&](std::vector<std::int64_t>& blocks, std::string& error) {
+    ByteWriter w;
+    w.put_string(error);
+    w.put<std::uint64_t>(blocks.size());
+    w.put_array(blocks.data(), blocks.size());
+    blocks.clear();
+    error.clear();
+    for (const auto& bytes : everyones(std::vector<char>(w.bytes().begin(), w.bytes().end()))) {
+      ByteReader r(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "a rank's surface blocks");
+      const std::string e = r.get_string();
+      if (error.empty()) error = e;
+      std::vector<std::int64_t> theirs;
+      r.get_array(theirs, r.get<std::uint64_t>());
+      blocks.insert(blocks.end(), theirs.begin(), theirs.end());
+    }
+    agreed_error = !error.empty();
+  };
+  // The pieces to rank 0, or the error a rank met after the agreed rounds.
+  ByteWriter w;
+  try {
+    const SurfacePiece piece = reconstruct_surface_part(cloud, s, part);
+    w.put_string("");
+    put_piece(w, piece);
+  } catch (const Error& e) {
+    if (agreed_error) throw;
+    w = ByteWriter();
+    w.put_string(e.what());
+  }
+  const auto gathered =
+      comm::gather_bytes(std::span<const char>(reinterpret_cast<const char*>(w.bytes().data()), w.bytes().size()));
+  std::vector<SurfacePiece> pieces;
+  std::string error;
+  for (const auto& bytes : gathered) {
+    ByteReader r(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "a rank's surface piece");
+    const std::string e = r.get_string();
+    if (!e.empty() && error.empty()) error = e;
+    if (e.empty()) pieces.push_back(get_piece(r, cloud));
+  }
+  std::vector<char> verdict(error.begin(), error.end());
+  comm::broadcast(verdict);
+  if (!verdict.empty()) throw Error(std::string(verdict.begin(), verdict.end()));
+  if (!comm::root()) return {};
+  return join_surface_pieces(pieces, s);
+}
+
+}  // namespace
+
+SurfaceMesh scene_surface(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings) {
+  const Records mine = local_records(sim, fields);
+  if (sim.particles().distributed()) return distributed_surface(mine, settings);
+  return reconstruct_surface(cloud_of(mine, mine.values, settings), settings);
 }
 
 }  // namespace pbf

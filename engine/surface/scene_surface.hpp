@@ -1,7 +1,7 @@
 #pragma once
 // What a scene gives its surface (dump/surface, and dump/image drawing water): the settings
 // that follow from the scene (the particles' lattice spacing, the domain and which of its faces
-// are walls: neither periodic nor open) and the particles in id order with their volumes.
+// are walls: neither periodic nor open) and the surface of its particles.
 #include "engine/output/dump_fields.hpp"
 #include "engine/surface/surface.hpp"
 
@@ -13,9 +13,9 @@ class Simulation;
 // spacings. Collective in a distributed run (the mean particle mass).
 SurfaceSettings scene_surface_settings(Simulation& sim, double voxel_spacings, double radius_spacings);
 
-// Every particle's position, volume (its mass over the mean mass, times s^3) and the values of
-// `fields`, in id order: on rank 0 in a distributed run (every rank calls it; the others get an
-// empty cloud).
-SurfaceCloud scene_cloud(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings);
+// The surface of the particles, with the values of `fields` on its vertices: on rank 0 in a
+// distributed run (every rank calls it and meshes a slab of the domain; the others get an
+// empty mesh). The same bits at any rank and thread count.
+SurfaceMesh scene_surface(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings);
 
 }  // namespace pbf

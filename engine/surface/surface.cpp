@@ -11,9 +11,7 @@
 
 namespace pbf {
 
-namespace {
-
-void check(const SurfaceCloud& cloud, const SurfaceSettings& s) {
+void check_surface_input(const SurfaceCloud& cloud, const SurfaceSettings& s) {
   auto positive = [](const char* name, double v, const char* unit) {
     if (!(std::isfinite(v) && v > 0)) throw Error(fmt::format("surface: '{}' must be a positive {}, got {}", name, unit, v));
   };
@@ -40,21 +38,18 @@ void check(const SurfaceCloud& cloud, const SurfaceSettings& s) {
       throw Error(fmt::format("surface: particle {} (of {}) has a position or volume that is not finite", i, n));
 }
 
+namespace {
+
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
 }  // namespace
 
-SurfaceMesh reconstruct_surface(const SurfaceCloud& cloud, const SurfaceSettings& settings, SurfaceStats* stats_out) {
-  check(cloud, settings);
+SurfacePiece reconstruct_surface_part(const SurfaceCloud& cloud, const SurfaceSettings& settings,
+                                      const SurfacePart& part, SurfaceStats* stats_out) {
+  check_surface_input(cloud, settings);
   SurfaceStats stats;
-  SurfaceMesh mesh;
-  if (cloud.size() == 0) {  // an empty frame: an empty mesh, with its attributes' names
-    for (const auto& a : cloud.attributes) mesh.attributes.push_back({a.name, a.components, {}});
-    if (stats_out) *stats_out = stats;
-    return mesh;
-  }
   auto t = std::chrono::steady_clock::now();
   const SurfaceParticles particles = with_images(cloud, settings);
   NeighborGrid cells;
@@ -62,18 +57,30 @@ SurfaceMesh reconstruct_surface(const SurfaceCloud& cloud, const SurfaceSettings
   stats.images = particles.size() - particles.originals;
   stats.seconds_kernels = seconds_since(t);
 
-  const VoxelBlocks field = voxel_blocks(particles, kernels, settings, stats);
+  const VoxelBlocks field = voxel_blocks(particles, kernels, settings, part, stats);
 
   t = std::chrono::steady_clock::now();
-  mesh = march_blocks(field, settings);
+  SurfacePiece piece = march_blocks(field, settings, part);
   stats.seconds_mesh = seconds_since(t);
 
   t = std::chrono::steady_clock::now();
-  vertex_values(particles, kernels, cloud, cells, mesh);
+  for (const auto& a : cloud.attributes) piece.attributes.push_back({a.name, a.components, {}});
+  if (!cloud.attributes.empty()) vertex_values(particles, kernels, cloud, cells, piece);
   stats.seconds_attributes = seconds_since(t);
-  stats.bytes += mesh.mesh.vertices.size() * (sizeof(mesh.mesh.vertices[0]) + sizeof(mesh.normals[0])) +
-                 mesh.mesh.triangles.size() * sizeof(mesh.mesh.triangles[0]);
   if (stats_out) *stats_out = stats;
+  return piece;
+}
+
+SurfaceMesh reconstruct_surface(const SurfaceCloud& cloud, const SurfaceSettings& settings, SurfaceStats* stats_out) {
+  std::vector<SurfacePiece> piece;
+  piece.push_back(reconstruct_surface_part(cloud, settings, SurfacePart{}, stats_out));
+  const auto t = std::chrono::steady_clock::now();
+  SurfaceMesh mesh = join_surface_pieces(piece, settings);
+  if (stats_out) {
+    stats_out->seconds_mesh += seconds_since(t);
+    stats_out->bytes += mesh.mesh.vertices.size() * (sizeof(mesh.mesh.vertices[0]) + sizeof(mesh.normals[0])) +
+                        mesh.mesh.triangles.size() * sizeof(mesh.mesh.triangles[0]);
+  }
   return mesh;
 }
 

@@ -34,9 +34,11 @@
 // Deterministic: the particles come in a fixed order (by id), each voxel sums its particles in
 // that order, and the mesh is assembled block by block in a fixed order: the same bits at any
 // thread count. The grid's voxels are aligned with the domain (its faces lie halfway between
-// two voxel layers), so the grid does not depend on where the particles are.
+// two voxel layers), so the grid does not depend on where the particles are; and meshed in
+// parts (slabs, one a rank; SurfacePart below), the pieces join into the same bits.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -99,5 +101,64 @@ struct SurfaceStats {
 // (refused beyond memory_limit, with the size it would need); throws pbf::Error.
 SurfaceMesh reconstruct_surface(const SurfaceCloud& cloud, const SurfaceSettings& settings,
                                 SurfaceStats* stats = nullptr);
+
+// The settings and the particles' positions and volumes checked (what reconstruct_surface
+// checks first); throws pbf::Error naming the parameter or the particle.
+void check_surface_input(const SurfaceCloud& cloud, const SurfaceSettings& settings);
+
+// Meshing in parts (one a rank): each part meshes the blocks of kBlock^3 voxels
+// (engine/surface/surface_parts.hpp) whose index along `axis` lies in [first, end), from a
+// cloud that holds every particle within reach of them (surface_part_reach), and the pieces
+// join into the mesh one part alone makes, bit for bit. The parts agree once a round on the
+// blocks the band missed (a block's phi is exact wherever it is computed, so only which blocks
+// are computed needs agreeing).
+struct SurfacePart {
+  int axis = 0;
+  long first = -(1L << 40), end = 1L << 40;  // the block layers along axis this part meshes
+  // Called by every part together, once a round: `blocks` (x, y, z block coordinates, three
+  // entries a block) becomes every part's list joined in part order, and `error` the first
+  // part's error (empty: none). Unset for a single part.
+  std::function<void(std::vector<std::int64_t>& blocks, std::string& error)> agree;
+};
+
+// The parts as slabs: the block layers across the domain's longest axis, cut so that each
+// part has about as many particles, and which particles each part's cloud needs.
+struct SurfaceSlabs {
+  explicit SurfaceSlabs(const SurfaceSettings& settings);
+  int axis = 0;
+  long layers = 1;                 // block layers across the domain
+  long layer(double x) const;      // a particle's at x along the axis (one beyond the domain: the last)
+  // From the particles in each layer (every part's particles counted): the parts' first layers.
+  void cut(const std::vector<std::int64_t>& particles_per_layer, int parts);
+  SurfacePart part(int r) const;   // the first and last reach beyond the domain
+  // Whether part r needs a particle at x along the axis: within reach of its blocks (their
+  // ring, a kernel's support and the band's growth, an image's original, and the neighbour
+  // cells a kernel's sums read, whole).
+  bool needs(int r, double x) const;
+
+ private:
+  double lo_ = 0, hi_ = 1, voxel_ = 1, reach_ = 0;
+  std::vector<long> first_;  // per part, and the layers' end
+};
+
+// A part's mesh: its blocks in (z, y, x) order, each with its vertices (in the order of their
+// edges) and the triangles of the cubes whose lower corner it holds. A triangle's corner is
+// (up << 16) | index: up (bit a: one block up along axis a) names the block that holds the
+// vertex; in the block itself the index is the vertex's, in one above the vertex's edge key.
+struct SurfacePiece {
+  std::vector<std::array<std::int64_t, 3>> blocks;
+  std::vector<std::uint32_t> first_vertex{0}, first_triangle{0};  // per block, and the total
+  std::vector<std::uint16_t> keys;                                  // per vertex: its edge
+  std::vector<std::array<double, 3>> vertices;
+  std::vector<std::array<float, 3>> normals;
+  std::vector<std::uint8_t> on_wall;  // walls open: the vertex lies on a wall face
+  std::vector<SurfaceCloud::Attribute> attributes;  // per vertex, component-major
+  std::vector<std::array<std::uint32_t, 3>> corners;
+};
+
+SurfacePiece reconstruct_surface_part(const SurfaceCloud& cloud, const SurfaceSettings& settings,
+                                      const SurfacePart& part, SurfaceStats* stats = nullptr);
+// The pieces of all parts (in any order) as one mesh.
+SurfaceMesh join_surface_pieces(const std::vector<SurfacePiece>& pieces, const SurfaceSettings& settings);
 
 }  // namespace pbf

@@ -1,8 +1,9 @@
 #pragma once
 // The steps of reconstruct_surface (engine/surface/surface.hpp), each in its own file:
 // mirror images at the walls and each particle's kernel (particle_kernels.cpp), the field on
-// blocks of voxels (voxel_blocks.cpp), marching cubes over them (march_blocks.cpp) and the
-// particles' values carried to the vertices (vertex_values.cpp).
+// blocks of voxels (voxel_blocks.cpp; its walls and smoothing, smooth_blocks.cpp), marching
+// cubes over them (march_blocks.cpp) and the particles' values carried to the vertices
+// (vertex_values.cpp); the pieces of parts joined (surface_pieces.cpp).
 #include <cstdint>
 #include <vector>
 
@@ -69,15 +70,25 @@ class VoxelBlocks {
   void padded(long bx, long by, long bz, float* out) const;
   static constexpr int kPadded = kBlock + 3;
 };
+// The part's blocks and the ring of one block around them along its axis (what their cubes,
+// gradients and smoothing read): the blocks beyond are not held.
 VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKernel>& kernels,
-                         const SurfaceSettings& s, SurfaceStats& stats);
+                         const SurfaceSettings& s, const SurfacePart& part, SurfaceStats& stats);
 
-// Marching cubes over the blocks: vertices with normals, outward triangles; walls open leaves
-// the wetted walls out.
-SurfaceMesh march_blocks(const VoxelBlocks& field, const SurfaceSettings& s);
+// The voxels beyond the walls (after each round again: a full block computed since holds other
+// values at their mirrors). With `as_mirror`, the first layer takes its mirror voxel's phi
+// instead (what the smoothing reads beyond a wall: the fluid as if it went on).
+void close_walls(VoxelBlocks& f, const SurfaceSettings& s, bool as_mirror);
+// Smoothing: passes of the binomial filter (1 2 1) / 4 along each axis over the computed
+// blocks (a voxel's neighbours in the next block through the halo), beyond a wall reading the
+// mirror voxels.
+void smooth_blocks(VoxelBlocks& f, const SurfaceSettings& s);
+
+// Marching cubes over the part's blocks: vertices with normals, outward triangles.
+SurfacePiece march_blocks(const VoxelBlocks& field, const SurfaceSettings& s, const SurfacePart& part);
 
 // Each vertex's attributes: the particles' values averaged with their kernels' weights there.
 void vertex_values(const SurfaceParticles& p, const std::vector<ParticleKernel>& kernels, const SurfaceCloud& cloud,
-                   const NeighborGrid& cells, SurfaceMesh& mesh);
+                   const NeighborGrid& cells, SurfacePiece& piece);
 
 }  // namespace pbf

@@ -13,8 +13,8 @@
 namespace pbf {
 
 void vertex_values(const SurfaceParticles& p, const std::vector<ParticleKernel>& kernels, const SurfaceCloud& cloud,
-                   const NeighborGrid& cells, SurfaceMesh& mesh) {
-  const std::size_t nv = mesh.mesh.vertices.size(), n = cloud.size();
+                   const NeighborGrid& cells, SurfacePiece& mesh) {
+  const std::size_t nv = mesh.vertices.size(), n = cloud.size();
   mesh.attributes.clear();
   for (const auto& a : cloud.attributes)
     mesh.attributes.push_back({a.name, a.components, std::vector<double>(nv * static_cast<std::size_t>(a.components), 0.0)});
@@ -26,7 +26,7 @@ void vertex_values(const SurfaceParticles& p, const std::vector<ParticleKernel>&
   for_blocks(nv, [&](std::size_t begin, std::size_t end) {
     std::vector<double> sum;
     for (std::size_t v = begin; v < end; ++v) {
-      const auto& x = mesh.mesh.vertices[v];
+      const auto& x = mesh.vertices[v];
       long c[3];
       for (int a = 0; a < 3; ++a) c[a] = g.cell_along(a, x[a]);
       double total = 0, nearest = std::numeric_limits<double>::infinity();

@@ -6,7 +6,10 @@
 // row inside the ellipsoid (a quadratic in x). At closed or open walls the first layer of voxels
 // beyond a face gets 2 iso - phi of its mirror voxel inside (where that is inside the surface; 0
 // elsewhere, as every layer further out), so that the surface crosses halfway between them: on
-// the face. Last, the smoothing passes, and the droplets added after them.
+// the face. Last, the smoothing passes, and the droplets added after them. Meshed in parts,
+// a part holds its own blocks and a ring of one block around them along its axis, finds the
+// full blocks at the surface among its own, and agrees with the others on all of them each
+// round.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -66,7 +69,7 @@ void VoxelBlocks::padded(long bx, long by, long bz, float* out) const {
 }
 
 VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKernel>& kernels,
-                         const SurfaceSettings& s, SurfaceStats& stats) {
+                         const SurfaceSettings& s, const SurfacePart& part, SurfaceStats& stats) {
   const auto start = std::chrono::steady_clock::now();
   VoxelBlocks f;
   // Inside the fluid phi is about 1, or, for the smoothed spheres, iso + r / s.
@@ -91,7 +94,30 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
       blo[a] = std::min(blo[a], floor_div(first - 1, B));
       bhi[a] = std::max(bhi[a], floor_div(last, B));
     }
-  if (np == 0) return f;
+  // The part's blocks and their ring along its axis.
+  const int axis = part.axis;
+  blo[axis] = std::max(blo[axis], part.first - 1);
+  bhi[axis] = std::min(bhi[axis], part.end);
+  auto owned = [&](const long c[3]) { return c[axis] >= part.first && c[axis] < part.end; };
+  // Every part takes part in each round of agreement, with blocks or without.
+  auto agree = [&](std::vector<std::int64_t>& more, std::string& error) {
+    if (part.agree) part.agree(more, error);
+    if (!error.empty()) throw Error(error);
+  };
+  // An error is agreed too (in the next round, where the others learn of it), then thrown.
+  auto refuse = [&](std::string message) {
+    std::vector<std::int64_t> none;
+    agree(none, message);
+    throw Error(message);
+  };
+  if (np == 0 || blo[axis] > bhi[axis]) {
+    for (;;) {
+      std::vector<std::int64_t> none;
+      std::string error;
+      agree(none, error);
+      if (none.empty()) return f;
+    }
+  }
   double dense = 1;
   for (int a = 0; a < 3; ++a) {
     f.block_lo[a] = blo[a];
@@ -99,12 +125,18 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
     dense *= static_cast<double>(f.block_dims[a]);
   }
   if (dense * sizeof(std::int32_t) > s.memory_limit)
-    throw Error(fmt::format("the surface's grid would need {} for its index of {:.3g} blocks of {}^3 voxels, more "
-                            "than the memory limit of {}: raise 'memory' or the voxel size",
-                            mib(dense * sizeof(std::int32_t)), dense, B, mib(s.memory_limit)));
+    refuse(fmt::format("the surface's grid would need {} for its index of {:.3g} blocks of {}^3 voxels, more "
+                       "than the memory limit of {}: raise 'memory' or the voxel size",
+                       mib(dense * sizeof(std::int32_t)), dense, B, mib(s.memory_limit)));
   const std::size_t blocks = static_cast<std::size_t>(dense);
   auto block_index = [&](long bx, long by, long bz) {
     return static_cast<std::size_t>(((bz - blo[2]) * f.block_dims[1] + (by - blo[1])) * f.block_dims[0] + (bx - blo[0]));
+  };
+  // Block b's coordinate along axis a.
+  auto coordinate = [&](std::size_t b, int a) {
+    const std::size_t nx = static_cast<std::size_t>(f.block_dims[0]), ny = static_cast<std::size_t>(f.block_dims[1]);
+    const std::size_t along = a == 0 ? b % nx : (a == 1 ? (b / nx) % ny : b / (nx * ny));
+    return static_cast<long>(along) + blo[a];
   };
   // The band: the blocks that a kernel of a particle without a full neighbourhood reaches
   // (grown by two voxels), where the surface can be. The other blocks some kernel reaches lie
@@ -130,9 +162,9 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
     pairs += spanned;
   }
   if (pairs * sizeof(std::uint32_t) > s.memory_limit)
-    throw Error(fmt::format("the surface's grid would need {} to list the particles of its blocks ({:.3g} entries), "
-                            "more than the memory limit of {}: raise 'memory' or the voxel size, or lower the radius",
-                            mib(pairs * sizeof(std::uint32_t)), pairs, mib(s.memory_limit)));
+    refuse(fmt::format("the surface's grid would need {} to list the particles of its blocks ({:.3g} entries), "
+                       "more than the memory limit of {}: raise 'memory' or the voxel size, or lower the radius",
+                       mib(pairs * sizeof(std::uint32_t)), pairs, mib(s.memory_limit)));
   f.block_slot.assign(blocks, VoxelBlocks::kEmpty);
   for (std::size_t i = 0; i < np; ++i)
     each_block(i, 0, [&](std::size_t b) { f.block_slot[b] = VoxelBlocks::kFull; });
@@ -142,10 +174,7 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
   // surface on the wall (below), and so is one with the last layer before an upper wall, which
   // holds the edges that cross it; one wholly beyond a wall sums no particles.
   auto beyond_wall = [&](std::size_t b, bool wholly) {
-    const long c[3] = {static_cast<long>(b % static_cast<std::size_t>(f.block_dims[0])) + blo[0],
-                       static_cast<long>((b / static_cast<std::size_t>(f.block_dims[0])) %
-                                         static_cast<std::size_t>(f.block_dims[1])) + blo[1],
-                       static_cast<long>(b / static_cast<std::size_t>(f.block_dims[0] * f.block_dims[1])) + blo[2]};
+    const long c[3] = {coordinate(b, 0), coordinate(b, 1), coordinate(b, 2)};
     if (s.walls == SurfaceWalls::none) return false;
     for (int a = 0; a < 3; ++a) {
       const long first = c[a] * B, last = first + B - 1;
@@ -160,9 +189,9 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
       f.block_slot[b] = static_cast<std::int32_t>(used++);
   const double grid_bytes = static_cast<double>(used) * VoxelBlocks::kBlockVoxels * sizeof(float);
   if (grid_bytes > s.memory_limit)
-    throw Error(fmt::format("the surface's grid would need {} ({} blocks of {}^3 voxels of {:.3g} m), more than the "
-                            "memory limit of {}: raise 'memory' or the voxel size",
-                            mib(grid_bytes), used, B, s.voxel, mib(s.memory_limit)));
+    refuse(fmt::format("the surface's grid would need {} ({} blocks of {}^3 voxels of {:.3g} m), more than the "
+                       "memory limit of {}: raise 'memory' or the voxel size",
+                       mib(grid_bytes), used, B, s.voxel, mib(s.memory_limit)));
   // Each block's particles (a band block's, and a full one's, which may need computing after
   // all), listed in particle order: counted, a prefix sum, then filled.
   std::vector<std::uint32_t> start_of(blocks + 1, 0);
@@ -182,10 +211,7 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
   std::vector<std::size_t> slot_index;  // slot -> block of the box
   auto add_slot = [&](std::size_t b) {
     slot_index.push_back(b);
-    f.slot_block[0].push_back(static_cast<long>(b % static_cast<std::size_t>(f.block_dims[0])) + blo[0]);
-    f.slot_block[1].push_back(static_cast<long>((b / static_cast<std::size_t>(f.block_dims[0])) %
-                                                static_cast<std::size_t>(f.block_dims[1])) + blo[1]);
-    f.slot_block[2].push_back(static_cast<long>(b / static_cast<std::size_t>(f.block_dims[0] * f.block_dims[1])) + blo[2]);
+    for (int a = 0; a < 3; ++a) f.slot_block[a].push_back(coordinate(b, a));
   };
   for (std::size_t b = 0; b < blocks; ++b)
     if (f.block_slot[b] >= 0) add_slot(b);
@@ -292,40 +318,6 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
   }
   };
 
-  // The voxels beyond the walls (again after each round: a full block computed since holds
-  // other values at their mirrors).
-  // With `as_mirror`, the first layer takes its mirror voxel's phi instead (what the smoothing
-  // reads beyond a wall: the fluid as if it went on).
-  auto close_walls = [&](bool as_mirror) {
-    if (s.walls == SurfaceWalls::none) return;
-    const float iso = static_cast<float>(s.iso);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::size_t sl = 0; sl < f.slots(); ++sl) {
-      const long bc[3] = {f.slot_block[0][sl], f.slot_block[1][sl], f.slot_block[2][sl]};
-      bool touches = false;
-      for (int a = 0; a < 3; ++a)
-        touches |= (s.wall[2 * a] && bc[a] * B < 0) || (s.wall[2 * a + 1] && bc[a] * B + B > f.n[a]);
-      if (!touches) continue;
-      float* out = f.values.data() + sl * VoxelBlocks::kBlockVoxels;
-      for (int k = 0; k < B; ++k)
-        for (int j = 0; j < B; ++j)
-          for (int i = 0; i < B; ++i) {
-            long g[3] = {bc[0] * B + i, bc[1] * B + j, bc[2] * B + k}, mirror[3];
-            bool beyond = false, first_layer = true;
-            for (int a = 0; a < 3; ++a) {
-              mirror[a] = g[a];
-              if (s.wall[2 * a] && g[a] < 0) {
-                beyond = true, first_layer &= g[a] == -1, mirror[a] = -1 - g[a];
-              } else if (s.wall[2 * a + 1] && g[a] >= f.n[a]) {
-                beyond = true, first_layer &= g[a] == f.n[a], mirror[a] = 2 * f.n[a] - 1 - g[a];
-              }
-            }
-            if (!beyond) continue;
-            const float inner = first_layer ? f.at(mirror[0], mirror[1], mirror[2]) : 0.0f;
-            out[(k * B + j) * B + i] = as_mirror ? inner : (inner > iso ? 2 * iso - inner : 0.0f);
-          }
-    }
-  };
 
   // A full block next to a computed one whose facing layer is not inside the surface may hold
   // the surface after all (the band is a rule of thumb, not a bound): it is computed too, in
@@ -335,10 +327,8 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
     const float iso = static_cast<float>(s.iso);
     for (std::size_t b = 0; b < blocks; ++b) {
       if (f.block_slot[b] != VoxelBlocks::kFull) continue;
-      const long c[3] = {static_cast<long>(b % static_cast<std::size_t>(f.block_dims[0])) + blo[0],
-                         static_cast<long>((b / static_cast<std::size_t>(f.block_dims[0])) %
-                                           static_cast<std::size_t>(f.block_dims[1])) + blo[1],
-                         static_cast<long>(b / static_cast<std::size_t>(f.block_dims[0] * f.block_dims[1])) + blo[2]};
+      const long c[3] = {coordinate(b, 0), coordinate(b, 1), coordinate(b, 2)};
+      if (!owned(c)) continue;  // the ring's are its owner's to find
       bool at_surface = false;
       for (int a = 0; a < 3 && !at_surface; ++a)
         for (int side = -1; side <= 1 && !at_surface; side += 2) {
@@ -365,53 +355,34 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
   };
   compute(0, f.slots(), false);
   for (;;) {
-    close_walls(false);
-    const std::vector<std::size_t> more = full_blocks_at_the_surface();
+    close_walls(f, s, false);
+    std::vector<std::int64_t> more;  // the blocks found, three coordinates each
+    for (std::size_t b : full_blocks_at_the_surface())
+      for (int a = 0; a < 3; ++a) more.push_back(coordinate(b, a));
+    std::string error;
+    agree(more, error);
     if (more.empty()) break;
     const std::size_t first = f.slots();
-    for (std::size_t b : more) {
+    for (std::size_t m = 0; m < more.size(); m += 3) {
+      const long c[3] = {static_cast<long>(more[m]), static_cast<long>(more[m + 1]), static_cast<long>(more[m + 2])};
+      if (c[axis] < blo[axis] || c[axis] > bhi[axis]) continue;  // neither this part's nor its ring's
+      const std::size_t b = block_index(c[0], c[1], c[2]);
+      if (f.block_slot[b] != VoxelBlocks::kFull) continue;
       f.block_slot[b] = static_cast<std::int32_t>(f.slots());
       add_slot(b);
     }
     const double bytes = static_cast<double>(f.slots()) * VoxelBlocks::kBlockVoxels * sizeof(float);
     if (bytes > s.memory_limit)
-      throw Error(fmt::format("the surface's grid would need {} ({} blocks of {}^3 voxels of {:.3g} m), more than the "
-                              "memory limit of {}: raise 'memory' or the voxel size",
-                              mib(bytes), f.slots(), B, s.voxel, mib(s.memory_limit)));
+      refuse(fmt::format("the surface's grid would need {} ({} blocks of {}^3 voxels of {:.3g} m), more than the "
+                         "memory limit of {}: raise 'memory' or the voxel size",
+                         mib(bytes), f.slots(), B, s.voxel, mib(s.memory_limit)));
     f.values.resize(f.slots() * VoxelBlocks::kBlockVoxels, 0.0f);
     compute(first, f.slots(), false);
   }
-  // Smoothing: passes of the binomial filter (1 2 1) / 4 along each axis over the computed
-  // blocks (a voxel's neighbours in the next block through the halo), the walls closed again.
   if (s.smoothing > 0) {
-    std::vector<float> smoothed(f.values.size());
-    for (int pass = 0; pass < s.smoothing; ++pass) {
-      close_walls(true);
-#pragma omp parallel
-      {
-        constexpr int P = VoxelBlocks::kPadded;
-        std::vector<float> pad(static_cast<std::size_t>(P) * P * P), tmp(pad.size());
-#pragma omp for schedule(dynamic, 1)
-        for (std::size_t sl = 0; sl < f.slots(); ++sl) {
-          f.padded(f.slot_block[0][sl], f.slot_block[1][sl], f.slot_block[2][sl], pad.data());
-          const int step[3] = {1, P, P * P};
-          float* from = pad.data();
-          float* to = tmp.data();
-          for (int a = 0; a < 3; ++a) {  // along x, y, z in turn, over the whole padded box
-            for (int v = step[a]; v < P * P * P - step[a]; ++v)
-              to[v] = 0.25f * from[v - step[a]] + 0.5f * from[v] + 0.25f * from[v + step[a]];
-            std::swap(from, to);
-          }
-          float* out = smoothed.data() + sl * VoxelBlocks::kBlockVoxels;
-          for (int k = 0; k < B; ++k)
-            for (int j = 0; j < B; ++j)
-              for (int i = 0; i < B; ++i) out[(k * B + j) * B + i] = from[((k + 1) * P + (j + 1)) * P + (i + 1)];
-        }
-      }
-      f.values.swap(smoothed);
-    }
+    smooth_blocks(f, s);
     if (split) compute(0, f.slots(), true);
-    close_walls(false);
+    close_walls(f, s, false);
   }
   stats.blocks = f.slots();
   stats.voxels = f.slots() * VoxelBlocks::kBlockVoxels;
