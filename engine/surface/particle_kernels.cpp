@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "engine/bodies/mass_properties.hpp"
 #include "engine/core/parallel.hpp"
@@ -96,39 +97,34 @@ std::vector<ParticleKernel> particle_kernels(const SurfaceParticles& p, const Su
   // integral 4 pi (16/315) (R/s)^3.
   const double full = 4 * std::numbers::pi * 16.0 / 315.0 * std::pow(R / s.spacing, 3);
 
-  for_blocks(originals, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const double V = cloud.volume[i];
-      const float xi = static_cast<float>(p.x[i]), yi = static_cast<float>(p.y[i]), zi = static_cast<float>(p.z[i]);
-      long c[3];
-      const double at[3] = {p.x[i], p.y[i], p.z[i]};
-      for (int a = 0; a < 3; ++a) c[a] = g.cell_along(a, at[a]);
-      // Weighted sums over the neighbours within R (the particle itself included), offsets
-      // from the particle: sum w, sum w d, sum w d d^T, with w = (1 - r^2/R^2)^3; in kLanes
-      // lanes (a vector each), added up in a fixed order at the end.
-      const float inv_R2 = static_cast<float>(1 / (R * R));
-      alignas(32) float n_[kLanes] = {}, w_[kLanes] = {}, x_[kLanes] = {}, y_[kLanes] = {}, z_[kLanes] = {},
-                        xx_[kLanes] = {}, yy_[kLanes] = {}, zz_[kLanes] = {}, xy_[kLanes] = {}, xz_[kLanes] = {},
-                        yz_[kLanes] = {};
-      for (long cz = std::max(0L, c[2] - 1); cz <= std::min(dims[2] - 1, c[2] + 1); ++cz)
-        for (long cy = std::max(0L, c[1] - 1); cy <= std::min(dims[1] - 1, c[1] + 1); ++cy) {
-          const long row = (cz * dims[1] + cy) * dims[0];
-          const std::size_t first = starts[row + std::max(0L, c[0] - 1)];
-          const std::size_t last = starts[row + std::min(dims[0] - 1, c[0] + 1) + 1];
-          for (std::size_t k0 = first; k0 < last; k0 += kLanes) {
-            const float *ax = px.data() + k0, *ay = py.data() + k0, *az = pz.data() + k0;
-            const int left = static_cast<int>(last - k0);
+  // The sums over the neighbours within R of a particle at (xi, yi, zi) in cell c: count,
+  // sum w, sum w d and, with `moments` (std::true_type), sum w d d^T, in kLanes lanes (a vector each; the
+  // sums stay in registers), added up in a fixed order at the end.
+  const float inv_R2 = static_cast<float>(1 / (R * R));
+  auto neighbour_sums = [&](auto moments, float xi, float yi, float zi, const long c[3], double sum[11]) {
+    alignas(32) float n_[kLanes] = {}, w_[kLanes] = {}, x_[kLanes] = {}, y_[kLanes] = {}, z_[kLanes] = {},
+                      xx_[kLanes] = {}, yy_[kLanes] = {}, zz_[kLanes] = {}, xy_[kLanes] = {}, xz_[kLanes] = {},
+                      yz_[kLanes] = {};
+    for (long cz = std::max(0L, c[2] - 1); cz <= std::min(dims[2] - 1, c[2] + 1); ++cz)
+      for (long cy = std::max(0L, c[1] - 1); cy <= std::min(dims[1] - 1, c[1] + 1); ++cy) {
+        const long row = (cz * dims[1] + cy) * dims[0];
+        const std::size_t first = starts[row + std::max(0L, c[0] - 1)];
+        const std::size_t last = starts[row + std::min(dims[0] - 1, c[0] + 1) + 1];
+        for (std::size_t k0 = first; k0 < last; k0 += kLanes) {
+          const float *ax = px.data() + k0, *ay = py.data() + k0, *az = pz.data() + k0;
+          const int left = static_cast<int>(last - k0);
 #pragma omp simd
-            for (int l = 0; l < kLanes; ++l) {  // past `last`: the padding, far away
-              const float dx = ax[l] - xi, dy = ay[l] - yi, dz = az[l] - zi;
-              const float q = 1.0f - (dx * dx + dy * dy + dz * dz) * inv_R2;
-              const float inside = static_cast<float>((q > 0.0f) & (l < left));
-              const float t = q * inside, w = t * t * t;
-              n_[l] += inside;
-              w_[l] += w;
-              x_[l] += w * dx;
-              y_[l] += w * dy;
-              z_[l] += w * dz;
+          for (int l = 0; l < kLanes; ++l) {  // past `last`: the padding, far away
+            const float dx = ax[l] - xi, dy = ay[l] - yi, dz = az[l] - zi;
+            const float q = 1.0f - (dx * dx + dy * dy + dz * dz) * inv_R2;
+            const float inside = static_cast<float>((q > 0.0f) & (l < left));
+            const float t = q * inside, w = t * t * t;
+            n_[l] += inside;
+            w_[l] += w;
+            x_[l] += w * dx;
+            y_[l] += w * dy;
+            z_[l] += w * dz;
+            if constexpr (decltype(moments)::value) {
               xx_[l] += w * dx * dx;
               yy_[l] += w * dy * dy;
               zz_[l] += w * dz * dz;
@@ -138,14 +134,27 @@ std::vector<ParticleKernel> particle_kernels(const SurfaceParticles& p, const Su
             }
           }
         }
-      const float* lanes[11] = {n_, w_, x_, y_, z_, xx_, yy_, zz_, xy_, xz_, yz_};
-      double sum[11];
-      for (int v = 0; v < 11; ++v) {
-        sum[v] = 0;
-        for (int l = 0; l < kLanes; ++l) sum[v] += lanes[v][l];
       }
+    const float* lanes[11] = {n_, w_, x_, y_, z_, xx_, yy_, zz_, xy_, xz_, yz_};
+    for (int v = 0; v < 11; ++v) {
+      sum[v] = 0;
+      for (int l = 0; l < kLanes; ++l) sum[v] += lanes[v][l];
+    }
+  };
+
+  for_blocks(originals, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double V = cloud.volume[i];
+      const float xi = static_cast<float>(p.x[i]), yi = static_cast<float>(p.y[i]), zi = static_cast<float>(p.z[i]);
+      long c[3];
+      const double at[3] = {p.x[i], p.y[i], p.z[i]};
+      for (int a = 0; a < 3; ++a) c[a] = g.cell_along(a, at[a]);
+      // Weighted sums over the neighbours within R (the particle itself included), offsets
+      // from the particle: sum w, sum w d, and (only where the kernel is an ellipsoid: the
+      // particle is not inside the fluid) sum w d d^T, with w = (1 - r^2/R^2)^3.
+      double sum[11];
+      neighbour_sums(std::false_type{}, xi, yi, zi, c, sum);
       const double count = sum[0], W = sum[1];
-      const double xx = sum[5], yy = sum[6], zz = sum[7], xy = sum[8], xz = sum[9], yz = sum[10];
       // Inside the fluid: a full neighbourhood around the particle (its kernel's support then
       // lies where phi is well above iso: the surface's blocks need not see it alone).
       const double m[3] = {sum[2] / W, sum[3] / W, sum[4] / W};
@@ -160,6 +169,8 @@ std::vector<ParticleKernel> particle_kernels(const SurfaceParticles& p, const Su
         kernels[i] = ellipsoid(a, identity, V);
         kernels[i].isolated = true;
       } else {
+        neighbour_sums(std::true_type{}, xi, yi, zi, c, sum);
+        const double xx = sum[5], yy = sum[6], zz = sum[7], xy = sum[8], xz = sum[9], yz = sum[10];
         Matrix3 C{{{xx / W - m[0] * m[0], xy / W - m[0] * m[1], xz / W - m[0] * m[2]},
                    {0, yy / W - m[1] * m[1], yz / W - m[1] * m[2]},
                    {0, 0, zz / W - m[2] * m[2]}}};

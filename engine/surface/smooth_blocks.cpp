@@ -1,6 +1,7 @@
 // The steps of the field after its blocks are computed (engine/surface/voxel_blocks.cpp): the
 // layers beyond the walls, and the smoothing passes.
 #include <algorithm>
+#include <cstdint>
 
 #include "engine/surface/surface_parts.hpp"
 
@@ -21,23 +22,29 @@ void close_walls(VoxelBlocks& f, const SurfaceSettings& s, bool as_mirror) {
       touches |= (s.wall[2 * a] && bc[a] * B < 0) || (s.wall[2 * a + 1] && bc[a] * B + B > f.n[a]);
     if (!touches) continue;
     float* out = f.values.data() + sl * VoxelBlocks::kBlockVoxels;
+    // Along each axis, each of the block's 16 layers: inside (0), the first layer beyond a
+    // wall (1) or one further out (2), and its mirror layer inside.
+    std::uint8_t state[3][B];
+    long mirror[3][B];
+    for (int a = 0; a < 3; ++a)
+      for (int l = 0; l < B; ++l) {
+        const long g = bc[a] * B + l;
+        state[a][l] = 0, mirror[a][l] = g;
+        if (s.wall[2 * a] && g < 0) state[a][l] = g == -1 ? 1 : 2, mirror[a][l] = -1 - g;
+        else if (s.wall[2 * a + 1] && g >= f.n[a]) state[a][l] = g == f.n[a] ? 1 : 2, mirror[a][l] = 2 * f.n[a] - 1 - g;
+      }
     for (int k = 0; k < B; ++k)
-      for (int j = 0; j < B; ++j)
+      for (int j = 0; j < B; ++j) {
+        const int row = std::max(state[2][k], state[1][j]);
+        float* r = out + (k * B + j) * B;
         for (int i = 0; i < B; ++i) {
-          long g[3] = {bc[0] * B + i, bc[1] * B + j, bc[2] * B + k}, mirror[3];
-          bool beyond = false, first_layer = true;
-          for (int a = 0; a < 3; ++a) {
-            mirror[a] = g[a];
-            if (s.wall[2 * a] && g[a] < 0) {
-              beyond = true, first_layer &= g[a] == -1, mirror[a] = -1 - g[a];
-            } else if (s.wall[2 * a + 1] && g[a] >= f.n[a]) {
-              beyond = true, first_layer &= g[a] == f.n[a], mirror[a] = 2 * f.n[a] - 1 - g[a];
-            }
-          }
-          if (!beyond) continue;
-          const float inner = first_layer ? f.at(mirror[0], mirror[1], mirror[2]) : 0.0f;
-          out[(k * B + j) * B + i] = as_mirror ? inner : (inner > iso ? 2 * iso - inner : 0.0f);
+          const int where = std::max(row, static_cast<int>(state[0][i]));
+          if (where == 0) continue;
+          // Only the first layer beyond (along every axis it is beyond) reads its mirror.
+          const float inner = where == 1 ? f.at(mirror[0][i], mirror[1][j], mirror[2][k]) : 0.0f;
+          r[i] = as_mirror ? inner : (inner > iso ? 2 * iso - inner : 0.0f);
         }
+      }
   }
 }
 
