@@ -158,6 +158,67 @@ test::SplitRun dam_break_surfaces(const std::filesystem::path& dir, int threads)
                       "OMP_NUM_THREADS=" + std::to_string(threads));
 }
 
+TEST(DumpSurface, AColumnInAMeshTankMeetsItsWallsSquareWithTheFluidMirroredAcrossThem) {
+  auto dir = test::temp_dir("surface-mesh-tank");
+  // The column of the test above, 10 x 10 x 20 particles at 1 cm, in a `solid` box tank
+  // (fluid inside) that stands 5 cm inside the domain's walls on every side: only the solid's
+  // faces touch the water. Meshed as placed, with the solids mirrored and without.
+  test::write_file(dir / "tank.lua", R"(
+    local s = 0.01
+    pbf.domain{lo = {-0.05, -0.05, -0.05}, hi = {0.15, 0.15, 0.35}}
+    pbf.kernel_radius(2 * s)
+    pbf.timestep(1e-3)
+    pbf.lattice{lo = {0, 0, 0}, hi = {0.1, 0.1, 0.2}, spacing = s}
+    pbf.fix("tank", "solid", {shape = "box", lo = {0, 0, 0}, hi = {0.1, 0.1, 0.3}, fluid = "inside"})
+    pbf.fix("mirrored", "dump/surface", {path = var.OUT .. "/mirrored_*.ply", interval = 1})
+    pbf.fix("plain", "dump/surface", {path = var.OUT .. "/plain_*.ply", interval = 1, solids = false})
+    pbf.run(0)
+  )");
+  const auto r = run_engine("run " + (dir / "tank.lua").string() + " -v OUT=" + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const double s = 0.01, height = 0.2;
+  // The top inside the tank, up to its walls but for its edges: the vertices above H - s/2,
+  // their mean height and their normals' largest tilt from the vertical.
+  struct Top {
+    double height = 0, tilt = 0;
+  };
+  auto top = [&](const Ply& ply) {
+    Top t;
+    double count = 0;
+    for (std::size_t v = 0; v < ply.mesh.vertices.size(); ++v) {
+      const auto& x = ply.mesh.vertices[v];
+      if (x[2] < height - s / 2 || x[0] < 0 || x[0] > 0.1 || x[1] < 0 || x[1] > 0.1) continue;
+      // (Within R of the tank's vertical edges a particle is mirrored across the nearer face only.)
+      if (std::min(x[0], 0.1 - x[0]) < 2 * s && std::min(x[1], 0.1 - x[1]) < 2 * s) continue;
+      t.height += x[2], count += 1;
+      t.tilt = std::max(t.tilt, std::acos(std::min(1.0f, ply.normals[v][2])) * 180 / std::numbers::pi);
+    }
+    EXPECT_GT(count, 100);
+    t.height /= count;
+    return t;
+  };
+  const Ply mirrored = read_ply(dir / "mirrored_00000.ply"), plain = read_ply(dir / "plain_00000.ply");
+  for (const Ply* ply : {&mirrored, &plain}) {
+    EXPECT_EQ(manifold_defect(ply->mesh), "");
+    EXPECT_EQ(pieces(ply->mesh), 1u);
+  }
+  const Top with = top(mirrored), without = top(plain);
+  // Mirrored, the top is flat at the column's height right up to the walls (as at the domain's
+  // walls: within 5 degrees); without, it rounds off into them (the kernels there see half a
+  // neighbourhood), tilting steeply.
+  EXPECT_NEAR(with.height, height, s / 4);
+  EXPECT_LT(with.tilt, 5.0);
+  EXPECT_GT(without.tilt, 30.0);
+  // The mirrored surface runs on into the tank's walls (hidden by them) and closes there: no
+  // vertex lies beyond the mirrored fluid's reach (R and half a spacing), and none in the
+  // domain's walls' gap around the tank beyond it.
+  double deepest = 0;
+  for (const auto& x : mirrored.mesh.vertices)
+    deepest = std::max({deepest, -x[0], x[0] - 0.1, -x[1], x[1] - 0.1, -x[2]});
+  EXPECT_GT(deepest, s / 2);
+  EXPECT_LT(deepest, 2 * s + s / 2 + s / 4);
+}
+
 TEST(DumpSurface, DamBreakMeshesAreClosedManifoldsAtEveryFrameSplashesIncludedAndTheSameAtAnyThreadCount) {
   auto one = test::temp_dir("surface-dam-1"), two = test::temp_dir("surface-dam-2");
   const auto r1 = dam_break_surfaces(one, 1), r2 = dam_break_surfaces(two, 2);

@@ -9,7 +9,9 @@
 // The domain's faces that are walls (not periodic, not open) close the surface: the fluid is
 // mirrored across them, so the surface meets a wall square at the water's height, and the
 // wetted wall is part of the mesh (walls = "closed": a tank's water is one closed body), or
-// left out (walls = "open": the free surface alone), or the walls are ignored ("none").
+// left out (walls = "open": the free surface alone), or the walls are ignored ("none"). The
+// fluid is mirrored across the faces of solids at rest too (`solids`), so the surface meets an
+// obstacle or a mesh tank square; it runs on into the solid and closes inside it, hidden.
 //
 // Sizes are in particle spacings (the lattice spacing of the particles' mass): a voxel of half
 // a spacing and a smoothing radius of two resolve the surface at the particles' own scale.
@@ -48,6 +50,7 @@ class DumpSurface : public Dump {
         iso_(p.real("iso")),
         sphere_radius_(p.real("sphere_radius")),
         smoothing_(static_cast<int>(p.integer("smoothing"))),
+        solids_(p.boolean("solids")),
         memory_mib_(p.real("memory")),
         collection_(p.string("collection")) {
     const std::string main = extension_of(pattern());
@@ -100,7 +103,7 @@ class DumpSurface : public Dump {
  private:
   void write_frame(Simulation& sim, const std::string& path, std::int64_t) override {
     const SurfaceSettings s = settings(sim);
-    const SurfaceMesh mesh = scene_surface(sim, fields(), s);  // collective
+    const SurfaceMesh mesh = scene_surface(sim, fields(), s, solids_);  // collective
     std::filesystem::path base(path);
     const std::string vtp = base.replace_extension(".vtp").string();
     if (std::find(formats_.begin(), formats_.end(), "vtp") != formats_.end()) {
@@ -136,6 +139,7 @@ class DumpSurface : public Dump {
 
   double voxel_, radius_, iso_, sphere_radius_;
   int smoothing_;
+  bool solids_;
   double memory_mib_;
   std::string collection_;
   std::vector<std::string> formats_;
@@ -168,6 +172,9 @@ void register_dump_surface(StyleRegistry& r) {
   params.push_back(ParamSpec{"walls", ParamType::String, std::string("closed"), "",
                              "the domain's walls: closed (the wetted wall is part of the mesh), open (left out), "
                              "none (ignored)"}.one_of({"closed", "open", "none"}));
+  params.push_back({"solids", ParamType::Bool, true, "",
+                    "mirror the fluid across the faces of solids at rest, as across the walls (the surface "
+                    "meets a solid square, runs on into it and closes there, hidden)"});
   params.push_back(ParamSpec{"memory", ParamType::Real, 4096.0, "MiB",
                              "the most the voxel grid may take: a larger one is refused with its size"}.above(0));
   params.push_back({"collection", ParamType::String, std::string(""), "",

@@ -42,6 +42,7 @@ class SolidFix : public Fix, public DensityBoundary, public SolidBody {
   std::array<double, 6> load() const override { return load_; }
   const SolidDynamics* dynamics() const override { return dynamics_ ? &*dynamics_ : nullptr; }
   std::optional<double> depth_in_wall(const std::array<double, 3>& point) const override;
+  bool face_near(const std::array<double, 3>& point, double& distance, std::array<double, 3>& normal) const override;
   void record_push(std::size_t i, const real momentum[3]) override {
     for (int c = 0; c < 3; ++c) push_[c][i] += momentum[c];
   }

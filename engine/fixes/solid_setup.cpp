@@ -253,6 +253,17 @@ std::optional<double> SolidFix::depth_in_wall(const std::array<double, 3>& point
   return -double(d);
 }
 
+bool SolidFix::face_near(const std::array<double, 3>& point, double& distance, std::array<double, 3>& normal) const {
+  if (!built_ || moves()) return false;
+  real d = 0, grad[3];
+  if (map_.distance(real(point[0]), real(point[1]), real(point[2]), d, grad) != SolidMap::Where::near) return false;
+  const double length = std::sqrt(double(grad[0]) * grad[0] + double(grad[1]) * grad[1] + double(grad[2]) * grad[2]);
+  if (!(length > 0)) return false;
+  distance = d;
+  for (int a = 0; a < 3; ++a) normal[a] = grad[a] / length;
+  return true;
+}
+
 // An obstacle thinner than the particle spacing lets particles through between its nodes.
 void SolidFix::check_thickness(double spacing) const {
   const double depth = map_.deepest();

@@ -36,6 +36,13 @@ class SolidBody {
   // infinite deep in the wall), where the solid stands now; nothing where that holds for no
   // whole run: before the run that builds the solid's map, or for a solid that moves.
   virtual std::optional<double> depth_in_wall(const std::array<double, 3>& /*point*/) const { return std::nullopt; }
+  // Near the surface, where depth_in_wall answers: the distance from a point to the surface
+  // (m, positive on the fluid side) and the unit normal into the fluid there; false elsewhere
+  // (far in the fluid, deep in the wall, a solid that moves).
+  virtual bool face_near(const std::array<double, 3>& /*point*/, double& /*distance*/,
+                         std::array<double, 3>& /*normal*/) const {
+    return false;
+  }
 };
 
 }  // namespace pbf

@@ -20,10 +20,9 @@ SurfaceParticles with_images(const SurfaceCloud& cloud, const SurfaceSettings& s
   for (std::size_t i = 0; i < n; ++i) p.source[i] = static_cast<std::uint32_t>(i);
   p.flips.assign(n, 0);
   p.originals = n;
-  if (s.walls == SurfaceWalls::none) return p;
   const std::vector<real>* pos[3] = {&cloud.x, &cloud.y, &cloud.z};
   std::vector<real>* out[3] = {&p.x, &p.y, &p.z};
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n && s.walls != SurfaceWalls::none; ++i) {
     // Along each axis: the face within R to mirror across (-1 lower, +1 upper, 0 none).
     int near[3] = {0, 0, 0};
     for (int a = 0; a < 3; ++a) {
@@ -46,6 +45,18 @@ SurfaceParticles with_images(const SurfaceCloud& cloud, const SurfaceSettings& s
       p.source.push_back(static_cast<std::uint32_t>(i));
       p.flips.push_back(static_cast<std::uint8_t>(set));
     }
+  }
+  // Across a solid's face: x - 2 d n (a vector attribute keeps its value: near a wall the
+  // fluid moves along it).
+  p.solid_images = p.size();
+  for (const auto& m : cloud.mirrors) {
+    const std::size_t i = m.particle;
+    out[0]->push_back(static_cast<real>(cloud.x[i] - 2 * m.distance * m.normal[0]));
+    out[1]->push_back(static_cast<real>(cloud.y[i] - 2 * m.distance * m.normal[1]));
+    out[2]->push_back(static_cast<real>(cloud.z[i] - 2 * m.distance * m.normal[2]));
+    p.source.push_back(static_cast<std::uint32_t>(i));
+    p.flips.push_back(0);
+    p.solid_normals.push_back(m.normal);
   }
   return p;
 }
@@ -71,6 +82,31 @@ ParticleKernel ellipsoid(const double a[3], const double e[3][3], double volume)
     k.extent[i] = static_cast<float>(std::sqrt(w2));
   }
   return k;
+}
+
+// The kernel k mirrored across a plane of unit normal n.
+ParticleKernel reflected(ParticleKernel k, const std::array<double, 3>& n) {
+  const double q[3][3] = {{k.q[0], k.q[3], k.q[4]}, {k.q[3], k.q[1], k.q[5]}, {k.q[4], k.q[5], k.q[2]}};
+  double h[3][3], inverse[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) h[r][c] = (r == c ? 1.0 : 0.0) - 2 * n[r] * n[c];
+  // Q^-1 by cofactors (Q is positive definite: an ellipsoid's).
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      inverse[c][r] = q[(r + 1) % 3][(c + 1) % 3] * q[(r + 2) % 3][(c + 2) % 3] -
+                      q[(r + 1) % 3][(c + 2) % 3] * q[(r + 2) % 3][(c + 1) % 3];
+  const double det = q[0][0] * inverse[0][0] + q[0][1] * inverse[1][0] + q[0][2] * inverse[2][0];
+  auto sandwich = [&](const double m[3][3], int r, int c) {  // (H M H)_rc
+    double sum = 0;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) sum += h[r][a] * m[a][b] * h[b][c];
+    return sum;
+  };
+  const int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+  ParticleKernel out = k;
+  for (int e = 0; e < 6; ++e) out.q[e] = static_cast<float>(sandwich(q, row[e], col[e]));
+  for (int a = 0; a < 3; ++a) out.extent[a] = static_cast<float>(std::sqrt(std::max(0.0, sandwich(inverse, a, a) / det)));
+  return out;
 }
 
 }  // namespace
@@ -202,6 +238,10 @@ std::vector<ParticleKernel> particle_kernels(const SurfaceParticles& p, const Su
     if (flipped(1) != flipped(2)) k.q[5] = -k.q[5];
     kernels[i] = k;
   }
+  // Across a solid's face: Q' = H Q H with H = I - 2 n n^T, and the bounding box's half-widths
+  // sqrt((Q'^-1)_aa) (Q'^-1 = H Q^-1 H).
+  for (std::size_t i = p.solid_images; i < n; ++i)
+    kernels[i] = reflected(kernels[p.source[i]], p.solid_normals[i - p.solid_images]);
   return kernels;
 }
 

@@ -4,9 +4,10 @@
 #include <cmath>
 #include <cstring>
 
-#include "engine/core/simulation.hpp"
 #include "engine/core/error.hpp"
+#include "engine/core/simulation.hpp"
 #include "engine/distributed/comm.hpp"
+#include "engine/geometry/solid_body.hpp"
 #include "engine/io/bytes.hpp"
 #include "engine/sph/mass.hpp"
 
@@ -30,16 +31,44 @@ SurfaceSettings scene_surface_settings(Simulation& sim, double voxel_spacings, d
 
 namespace {
 
-// Each particle's record: id, x, y, z, mass, then each field's components.
+// Each particle's record: id, x, y, z, mass, the solid face it is mirrored across (its normal
+// and the distance to it, -1 for none), then each field's components.
+constexpr std::size_t kFields = 9;
 struct Records {
-  std::size_t width = 5;
+  std::size_t width = kFields;
   std::vector<double> values;
   std::vector<std::string> names;
   std::vector<int> components;
   std::size_t size() const { return values.size() / width; }
 };
 
-Records local_records(Simulation& sim, DumpFields& fields) {
+// The nearest face of a solid at rest within R of a particle at x, where the solid is thick
+// enough for the mirrored fluid (the image's kernel, 2 d + R behind the particle, ends in the
+// wall) and the face is not one of the domain's walls (which the surface mirrors itself).
+bool solid_face(const std::vector<const SolidBody*>& solids, const SurfaceSettings& s, const std::array<double, 3>& x,
+                double& distance, std::array<double, 3>& normal) {
+  bool found = false;
+  for (const SolidBody* solid : solids) {
+    double d;
+    std::array<double, 3> n;
+    if (!solid->face_near(x, d, n) || !(d >= 0 && d < s.radius) || (found && d >= distance)) continue;
+    bool domain_wall = false;
+    for (int a = 0; a < 3; ++a) {
+      if (std::fabs(n[a]) < 0.99) continue;
+      const double face = x[a] - d * n[a];
+      domain_wall |= n[a] > 0 ? s.wall[2 * a] && std::fabs(face - s.lo[a]) < s.spacing / 4
+                              : s.wall[2 * a + 1] && std::fabs(face - s.hi[a]) < s.spacing / 4;
+    }
+    if (domain_wall) continue;
+    const double behind = 2 * d + s.radius;
+    const auto depth = solid->depth_in_wall({x[0] - behind * n[0], x[1] - behind * n[1], x[2] - behind * n[2]});
+    if (!depth || !(*depth > 0)) continue;
+    found = true, distance = d, normal = n;
+  }
+  return found;
+}
+
+Records local_records(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings, bool solids) {
   if (sim.particles().distributed()) sim.refresh_neighbors();  // derived fields read neighbours
   const auto& P = sim.particles();
   const std::size_t n = P.size();
@@ -56,7 +85,12 @@ Records local_records(Simulation& sim, DumpFields& fields) {
     double* row = &r.values[i * r.width];
     row[0] = static_cast<double>(P.ids()[i]), row[1] = P.x()[i], row[2] = P.y()[i], row[3] = P.z()[i];
     row[4] = P.mass()[i];
-    std::size_t at = 5;
+    double distance = -1;
+    std::array<double, 3> normal{};
+    if (solids && settings.walls != SurfaceWalls::none)
+      solid_face(sim.solid_bodies(), settings, {row[1], row[2], row[3]}, distance, normal);
+    row[5] = normal[0], row[6] = normal[1], row[7] = normal[2], row[8] = distance;
+    std::size_t at = kFields;
     for (const auto& field : columns)
       for (const real* c : field) row[at++] = c[i];
   }
@@ -79,7 +113,8 @@ SurfaceCloud cloud_of(const Records& shape, const std::vector<double>& values, c
     const double* r = &values[order[i] * width];
     c.x[i] = static_cast<real>(r[1]), c.y[i] = static_cast<real>(r[2]), c.z[i] = static_cast<real>(r[3]);
     c.volume[i] = r[4] * unit;
-    std::size_t at = 5;
+    if (r[8] >= 0) c.mirrors.push_back({static_cast<std::uint32_t>(i), {r[5], r[6], r[7]}, r[8]});
+    std::size_t at = kFields;
     for (auto& a : c.attributes)
       for (int comp = 0; comp < a.components; ++comp) a.values[static_cast<std::size_t>(comp) * total + i] = r[at++];
   }
@@ -222,8 +257,8 @@ SurfaceMesh distributed_surface(const Records& mine, const SurfaceSettings& s) {
 
 }  // namespace
 
-SurfaceMesh scene_surface(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings) {
-  const Records mine = local_records(sim, fields);
+SurfaceMesh scene_surface(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings, bool solids) {
+  const Records mine = local_records(sim, fields, settings, solids);
   if (sim.particles().distributed()) return distributed_surface(mine, settings);
   return reconstruct_surface(cloud_of(mine, mine.values, settings), settings);
 }

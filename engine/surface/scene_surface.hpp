@@ -16,6 +16,8 @@ SurfaceSettings scene_surface_settings(Simulation& sim, double voxel_spacings, d
 // The surface of the particles, with the values of `fields` on its vertices: on rank 0 in a
 // distributed run (every rank calls it and meshes a slab of the domain; the others get an
 // empty mesh). The same bits at any rank and thread count.
-SurfaceMesh scene_surface(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings);
+// With `solids`, the particles near a solid at rest are mirrored across its face (the surface
+// meets it square, as it meets the domain's walls).
+SurfaceMesh scene_surface(Simulation& sim, DumpFields& fields, const SurfaceSettings& settings, bool solids = true);
 
 }  // namespace pbf

@@ -36,6 +36,13 @@ void check_surface_input(const SurfaceCloud& cloud, const SurfaceSettings& s) {
     if (!(std::isfinite(cloud.x[i]) && std::isfinite(cloud.y[i]) && std::isfinite(cloud.z[i]) &&
           std::isfinite(cloud.volume[i]) && cloud.volume[i] >= 0))
       throw Error(fmt::format("surface: particle {} (of {}) has a position or volume that is not finite", i, n));
+  for (const auto& m : cloud.mirrors) {
+    const double length = std::hypot(m.normal[0], m.normal[1], m.normal[2]);
+    if (!(m.particle < n && std::fabs(length - 1) < 1e-6 && std::isfinite(m.distance) && m.distance >= 0))
+      throw Error(fmt::format("surface: the mirror of particle {} has no particle, a normal that is not a unit "
+                              "vector, or a distance that is not a finite positive length",
+                              m.particle));
+  }
 }
 
 namespace {

@@ -29,7 +29,10 @@
 // mirrored across it, so phi meets the wall as if the fluid went on (the surface stands square
 // to the wall, at the fluid's true height), and the voxels beyond the face are set so that the
 // surface crosses exactly at the face: closed, the mesh includes the wetted wall (one closed
-// body); open, those triangles are left out (only the free surface).
+// body); open, those triangles are left out (only the free surface). The solids' faces (the
+// cloud's mirrors) mirror their particles too, so the surface meets a solid square as it meets
+// a wall; it runs on into the solid as far as the mirrored fluid reaches (up to R and half a
+// spacing), where the solid hides it, and closes there.
 //
 // Deterministic: the particles come in a fixed order (by id), each voxel sums its particles in
 // that order, and the mesh is assembled block by block in a fixed order: the same bits at any
@@ -59,6 +62,15 @@ struct SurfaceCloud {
     std::vector<double> values;
   };
   std::vector<Attribute> attributes;
+  // Particles within R of a solid's face (a mesh, not the domain's walls), mirrored across the
+  // face's plane as the walls mirror theirs: the particle, the face's unit normal into the
+  // fluid, and the particle's distance to it (m).
+  struct Mirror {
+    std::uint32_t particle = 0;
+    std::array<double, 3> normal{};
+    double distance = 0;
+  };
+  std::vector<Mirror> mirrors;
   std::size_t size() const { return x.size(); }
 };
 

@@ -12,12 +12,16 @@
 
 namespace pbf {
 
-// The cloud's particles followed by their mirror images across the walls within R of them.
+// The cloud's particles followed by their mirror images across the walls within R of them,
+// then across the solids' faces.
 struct SurfaceParticles {
   std::vector<real> x, y, z;
   std::vector<std::uint32_t> source;  // the cloud's particle (itself, or the one mirrored)
   std::vector<std::uint8_t> flips;    // the axes an image is reflected along (bit a)
   std::size_t originals = 0;
+  // The images across the solids' faces, from `solid_images` on: each one's face normal.
+  std::size_t solid_images = 0;
+  std::vector<std::array<double, 3>> solid_normals;
   std::size_t size() const { return x.size(); }
 };
 SurfaceParticles with_images(const SurfaceCloud& cloud, const SurfaceSettings& s);
