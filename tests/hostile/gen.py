@@ -370,6 +370,7 @@ NON_NUMERIC = [
     ("dump/surface", "walls", "string", [("empty", '""', "R"), ("shut", '"shut"', "R"), ("open", '"open"', "A"),
                                          ("none", '"none"', "A")]),
     ("dump/surface", "collection", "string", [("named", '"out/c.pvd"', "A")]),
+    ("dump/surface", "solids", "bool", [("false", "false", "A")]),
     ("dump/movie", "path", "string", [("empty", '""', "R")]),
     ("dump/movie", "color", "string", [("empty", '""', "R"), ("unknown", '"nosuch"', "R")]),
     ("dump/movie", "colormap", "string", [("empty", '""', "R"), ("gray", '"gray"', "A")]),
