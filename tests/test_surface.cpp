@@ -314,7 +314,7 @@ TEST(Surface, SlabsMeshedApartJoinToTheWholeBitForBit) {
     const SurfaceMesh whole = reconstruct_surface(cloud, st);
 
     constexpr int kParts = 3;
-    SurfaceSlabs slabs(st);
+    SurfaceSlabs slabs(st, false);
     ASSERT_EQ(slabs.axis, 0);
     std::vector<std::int64_t> count(static_cast<std::size_t>(slabs.layers), 0);
     for (std::size_t i = 0; i < cloud.size(); ++i) ++count[static_cast<std::size_t>(slabs.layer(cloud.x[i]))];
@@ -334,7 +334,7 @@ TEST(Surface, SlabsMeshedApartJoinToTheWholeBitForBit) {
           mine.volume.push_back(cloud.volume[i]);
           mine.attributes[0].values.push_back(cloud.attributes[0].values[i]);
         }
-      EXPECT_LT(mine.size(), cloud.size() * 3 / 4) << "part " << r << " needs nearly every particle";
+      EXPECT_LT(mine.size(), cloud.size() * 3 / 5) << "part " << r << " needs nearly every particle";
       part.agree = [&agreement, r](std::vector<std::int64_t>& blocks, std::string& error) {
         agreement.agree(r, blocks, error);
       };

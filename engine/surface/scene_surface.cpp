@@ -182,7 +182,9 @@ SurfaceMesh distributed_surface(const Records& mine, const SurfaceSettings& s) {
     error = first_error(error);
     if (!error.empty()) throw Error(error);
   }
-  SurfaceSlabs slabs(s);
+  std::int64_t mirrored = 0;
+  for (std::size_t i = 0; i < n; ++i) mirrored += mine.values[i * width + 8] >= 0;
+  SurfaceSlabs slabs(s, comm::sum(mirrored) > 0);
   std::vector<std::int64_t> count(static_cast<std::size_t>(slabs.layers), 0);
   for (std::size_t i = 0; i < n; ++i) ++count[static_cast<std::size_t>(slabs.layer(mine.values[i * width + 1 + slabs.axis]))];
   comm::sum(count);

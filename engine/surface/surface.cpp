@@ -72,7 +72,7 @@ SurfacePiece reconstruct_surface_part(const SurfaceCloud& cloud, const SurfaceSe
 
   t = std::chrono::steady_clock::now();
   for (const auto& a : cloud.attributes) piece.attributes.push_back({a.name, a.components, {}});
-  if (!cloud.attributes.empty()) vertex_values(particles, kernels, cloud, cells, piece);
+  if (!cloud.attributes.empty()) vertex_values(particles, kernels, cloud, cells, settings.radius, piece);
   stats.seconds_attributes = seconds_since(t);
   if (stats_out) *stats_out = stats;
   return piece;

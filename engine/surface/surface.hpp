@@ -120,10 +120,10 @@ void check_surface_input(const SurfaceCloud& cloud, const SurfaceSettings& setti
 
 // Meshing in parts (one a rank): each part meshes the blocks of kBlock^3 voxels
 // (engine/surface/surface_parts.hpp) whose index along `axis` lies in [first, end), from a
-// cloud that holds every particle within reach of them (surface_part_reach), and the pieces
-// join into the mesh one part alone makes, bit for bit. The parts agree once a round on the
-// blocks the band missed (a block's phi is exact wherever it is computed, so only which blocks
-// are computed needs agreeing).
+// cloud that holds every particle within reach of them (SurfaceSlabs::needs), and the pieces
+// join into the mesh one part alone makes, bit for bit. The parts agree on which blocks are
+// computed (the statuses of the ring of blocks each holds around its own, and once a round the
+// blocks the band missed); a block's phi where it matters is exact wherever it is computed.
 struct SurfacePart {
   int axis = 0;
   long first = -(1L << 40), end = 1L << 40;  // the block layers along axis this part meshes
@@ -136,16 +136,17 @@ struct SurfacePart {
 // The parts as slabs: the block layers across the domain's longest axis, cut so that each
 // part has about as many particles, and which particles each part's cloud needs.
 struct SurfaceSlabs {
-  explicit SurfaceSlabs(const SurfaceSettings& settings);
+  // `mirrors`: whether any particle is mirrored across a solid's face (its image reaches further).
+  SurfaceSlabs(const SurfaceSettings& settings, bool mirrors);
   int axis = 0;
   long layers = 1;                 // block layers across the domain
   long layer(double x) const;      // a particle's at x along the axis (one beyond the domain: the last)
   // From the particles in each layer (every part's particles counted): the parts' first layers.
   void cut(const std::vector<std::int64_t>& particles_per_layer, int parts);
   SurfacePart part(int r) const;   // the first and last reach beyond the domain
-  // Whether part r needs a particle at x along the axis: within reach of its blocks (their
-  // ring, a kernel's support and the band's growth, an image's original, and the neighbour
-  // cells a kernel's sums read, whole).
+  // Whether part r needs a particle at x along the axis: within reach of its blocks (a kernel's
+  // support and the voxels the band, the smoothing and the cubes add, a solid image's
+  // original, and the neighbour cells a kernel's sums read, whole).
   bool needs(int r, double x) const;
 
  private:

@@ -91,8 +91,9 @@ void smooth_blocks(VoxelBlocks& f, const SurfaceSettings& s);
 // Marching cubes over the part's blocks: vertices with normals, outward triangles.
 SurfacePiece march_blocks(const VoxelBlocks& field, const SurfaceSettings& s, const SurfacePart& part);
 
-// Each vertex's attributes: the particles' values averaged with their kernels' weights there.
+// Each vertex's attributes: the particles' values averaged with their kernels' weights there
+// (the kernels reach no further than `radius`, R).
 void vertex_values(const SurfaceParticles& p, const std::vector<ParticleKernel>& kernels, const SurfaceCloud& cloud,
-                   const NeighborGrid& cells, SurfacePiece& piece);
+                   const NeighborGrid& cells, double radius, SurfacePiece& piece);
 
 }  // namespace pbf

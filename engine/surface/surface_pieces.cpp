@@ -134,14 +134,19 @@ SurfaceMesh join_surface_pieces(const std::vector<SurfacePiece>& pieces, const S
   return out;
 }
 
-SurfaceSlabs::SurfaceSlabs(const SurfaceSettings& s) {
+SurfaceSlabs::SurfaceSlabs(const SurfaceSettings& s, bool mirrors) {
   for (int a = 1; a < 3; ++a)
     if (s.hi[a] - s.lo[a] > s.hi[axis] - s.lo[axis]) axis = a;
   lo_ = s.lo[axis], hi_ = s.hi[axis];
   const long voxels = std::max(1L, std::lround((hi_ - lo_) / s.voxel));  // as VoxelBlocks divides the domain
   voxel_ = (hi_ - lo_) / static_cast<double>(voxels);
   layers = (voxels + VoxelBlocks::kBlock - 1) / VoxelBlocks::kBlock;
-  reach_ = VoxelBlocks::kBlock * voxel_ + 4 * voxel_ + 8 * s.radius;
+  // A kernel that decides an owned block's status (its box grown by a voxel below and the
+  // band's two) or that reaches the ring's layers that the smoothing and the cubes read (the
+  // passes and two): R and that many voxels; a solid's image lies up to 2 R from its particle;
+  // and a kernel's sums read the neighbour cells on either side of its own, whole.
+  const double cell = (hi_ - lo_) / std::max(1.0, std::floor((hi_ - lo_) / s.radius));  // as GridGeometry::of
+  reach_ = s.radius + (std::max(s.smoothing, 1) + 3) * voxel_ + (mirrors ? 2 * s.radius : 0.0) + 2 * cell;
   first_ = {0, layers};
 }
 

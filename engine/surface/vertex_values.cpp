@@ -13,7 +13,7 @@
 namespace pbf {
 
 void vertex_values(const SurfaceParticles& p, const std::vector<ParticleKernel>& kernels, const SurfaceCloud& cloud,
-                   const NeighborGrid& cells, SurfacePiece& mesh) {
+                   const NeighborGrid& cells, double radius, SurfacePiece& mesh) {
   const std::size_t nv = mesh.vertices.size(), n = cloud.size();
   mesh.attributes.clear();
   for (const auto& a : cloud.attributes)
@@ -23,6 +23,8 @@ void vertex_values(const SurfaceParticles& p, const std::vector<ParticleKernel>&
   const std::uint32_t* starts = cells.cell_starts();
   const std::uint32_t* order = cells.sorted_order().data();
   const long* dims = g.dims;
+  // (A little beyond R^2, so that no kernel whose d.Q.d rounds below 1 at R is left out.)
+  const double beyond = 1.001 * radius * radius;
   for_blocks(nv, [&](std::size_t begin, std::size_t end) {
     std::vector<double> sum;
     for (std::size_t v = begin; v < end; ++v) {
@@ -40,11 +42,12 @@ void vertex_values(const SurfaceParticles& p, const std::vector<ParticleKernel>&
             for (std::uint32_t k = starts[cell]; k < starts[cell + 1]; ++k) {
               const std::uint32_t j = order[k];
               const double d[3] = {x[0] - p.x[j], x[1] - p.y[j], x[2] - p.z[j]};
+              const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+              if (r2 < nearest) nearest = r2, closest = j;
+              if (r2 > beyond) continue;  // outside every kernel: no semi-axis is longer than R
               const float* q = kernels[j].q;
               const double r = q[0] * d[0] * d[0] + q[1] * d[1] * d[1] + q[2] * d[2] * d[2] +
                                2 * (q[3] * d[0] * d[1] + q[4] * d[0] * d[2] + q[5] * d[1] * d[2]);
-              const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-              if (r2 < nearest) nearest = r2, closest = j;
               if (r >= 1) continue;
               const double w = kernels[j].weight * (1 - r) * (1 - r) * (1 - r);
               total += w;

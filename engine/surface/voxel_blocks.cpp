@@ -94,26 +94,41 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
       blo[a] = std::min(blo[a], floor_div(first - 1, B));
       bhi[a] = std::max(bhi[a], floor_div(last, B));
     }
-  // The part's blocks and their ring along its axis.
-  const int axis = part.axis;
-  blo[axis] = std::max(blo[axis], part.first - 1);
-  bhi[axis] = std::min(bhi[axis], part.end);
-  auto owned = [&](const long c[3]) { return c[axis] >= part.first && c[axis] < part.end; };
-  // Every part takes part in each round of agreement, with blocks or without.
-  auto agree = [&](std::vector<std::int64_t>& more, std::string& error) {
-    if (part.agree) part.agree(more, error);
+  // Meshed in parts, every part takes part in each agreement, with values or without: on the
+  // box (the union of the parts': the blocks a neighbour holds lie in it), on the statuses of
+  // the blocks in each part's ring (its neighbours', who see all the particles that decide
+  // them), then once a round on the full blocks found at the surface.
+  auto agree = [&](std::vector<std::int64_t>& values, std::string& error) {
+    if (part.agree) part.agree(values, error);
     if (!error.empty()) throw Error(error);
   };
-  // An error is agreed too (in the next round, where the others learn of it), then thrown.
+  // An error is agreed too (in the next agreement, where the others learn of it), then thrown.
   auto refuse = [&](std::string message) {
     std::vector<std::int64_t> none;
     agree(none, message);
     throw Error(message);
   };
-  if (np == 0 || blo[axis] > bhi[axis]) {
+  if (part.agree) {
+    std::vector<std::int64_t> extent = {blo[0], bhi[0], blo[1], bhi[1], blo[2], bhi[2]};
+    std::string error;
+    agree(extent, error);
+    for (std::size_t k = 0; k < extent.size(); k += 6)
+      for (int a = 0; a < 3; ++a) {
+        blo[a] = std::min(blo[a], static_cast<long>(extent[k + 2 * a]));
+        bhi[a] = std::max(bhi[a], static_cast<long>(extent[k + 2 * a + 1]));
+      }
+  }
+  // The part's blocks and their ring along its axis.
+  const int axis = part.axis;
+  blo[axis] = std::max(blo[axis], part.first - 1);
+  bhi[axis] = std::min(bhi[axis], part.end);
+  auto owned = [&](const long c[3]) { return c[axis] >= part.first && c[axis] < part.end; };
+  if (np == 0 || blo[0] > bhi[0] || blo[1] > bhi[1] || blo[2] > bhi[2]) {  // no blocks: the others' agreements
+    std::vector<std::int64_t> statuses;
+    std::string error;
+    agree(statuses, error);
     for (;;) {
       std::vector<std::int64_t> none;
-      std::string error;
       agree(none, error);
       if (none.empty()) return f;
     }
@@ -170,6 +185,25 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
     each_block(i, 0, [&](std::size_t b) { f.block_slot[b] = VoxelBlocks::kFull; });
   for (std::size_t i = 0; i < np; ++i)
     if (!kernels[i].interior) each_block(i, 2, [&](std::size_t b) { f.block_slot[b] = 0; });
+  if (part.agree) {  // the ring's statuses are its owners': (x, y, z, 0 band or 1 full) each
+    std::vector<std::int64_t> statuses;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const long c[3] = {coordinate(b, 0), coordinate(b, 1), coordinate(b, 2)};
+      if (f.block_slot[b] == VoxelBlocks::kEmpty || !owned(c) || (c[axis] != part.first && c[axis] != part.end - 1)) continue;
+      statuses.insert(statuses.end(), {c[0], c[1], c[2], f.block_slot[b] == 0 ? 0 : 1});
+    }
+    std::string error;
+    agree(statuses, error);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const long c[3] = {coordinate(b, 0), coordinate(b, 1), coordinate(b, 2)};
+      if (!owned(c)) f.block_slot[b] = VoxelBlocks::kEmpty;
+    }
+    for (std::size_t k = 0; k < statuses.size(); k += 4) {
+      const long c[3] = {static_cast<long>(statuses[k]), static_cast<long>(statuses[k + 1]), static_cast<long>(statuses[k + 2])};
+      if (owned(c) || c[axis] < blo[axis] || c[axis] > bhi[axis]) continue;
+      f.block_slot[block_index(c[0], c[1], c[2])] = statuses[k + 3] == 0 ? 0 : VoxelBlocks::kFull;
+    }
+  }
   // A block with voxels beyond a closed wall is computed too, for the layer that closes the
   // surface on the wall (below), and so is one with the last layer before an upper wall, which
   // holds the edges that cross it; one wholly beyond a wall sums no particles.
