@@ -450,5 +450,52 @@ TEST(SurfaceImage, TheColumnIsDrawnAsWaterWithASheenSameBytesAtAnyThreadCount) {
   EXPECT_GT(lightest - darkest, 40);  // shaded: lit faces, grazing sheen and the shade differ
 }
 
+// The water's shading follows the mesh's normals across each triangle (Phong), so a smooth
+// surface looks smooth: on a ball of water the colour varies about linearly from pixel to
+// pixel (the second differences no more than rounding to whole levels makes, about 0.5), where
+// shading each triangle flat (its corners all given the face's normal) shows the facets, a
+// few pixels wide, as steps.
+TEST(SurfaceImage, ABallOfWaterIsShadedWithoutFacets) {
+  const double s = 0.01, r = 0.1, box[3] = {0.4, 0.4, 0.4};
+  const SurfaceMesh m = reconstruct_surface(ball(s, r, {0.2, 0.2, 0.2}), settings_for(s, box));
+  ImageSpec spec;
+  spec.width = 240, spec.height = 240, spec.radius = 1, spec.colorbar = false, spec.scale_bar = false;
+  spec.direction = {1, 2, -0.7};
+  spec.zoom = 1.6;
+  Domain domain;
+  for (int a = 0; a < 3; ++a) domain.hi[a] = box[a];
+  const real none = 0;
+  const double no_value = 0;
+  // How rough the shading is: the mean of |c(x - 1) - 2 c(x) + c(x + 1)| along rows (c the red
+  // channel, the sheen's) over the water well inside the ball's outline (a disc of 70% of its
+  // radius about the water's centroid): zero where the colour varies linearly, large at steps.
+  auto roughness = [&](const std::vector<std::array<float, 3>>* normals) {
+    std::vector<unsigned char> rgb;
+    const std::vector<SolidSurface> water{{&m.mesh, false, true, normals}};
+    ImageRenderer(spec).render(domain, &none, &none, &none, &no_value, 0, 0, 1, "", rgb, water);
+    auto at = [&](int x, int y) { return (std::size_t(y) * spec.width + x) * 3; };
+    auto is_water = [&](std::size_t p) { return rgb[p + 2] > rgb[p] + 30 && rgb[p + 2] >= rgb[p + 1]; };
+    double cx = 0, cy = 0, count = 0;
+    for (int y = 0; y < spec.height; ++y)
+      for (int x = 0; x < spec.width; ++x)
+        if (is_water(at(x, y))) cx += x, cy += y, count += 1;
+    cx /= count, cy /= count;
+    const double inner = 0.7 * std::sqrt(count / std::numbers::pi);
+    double sum = 0, terms = 0;
+    for (int y = 0; y < spec.height; ++y)
+      for (int x = 1; x + 1 < spec.width; ++x)
+        if (std::hypot(x - cx, y - cy) < inner) {
+          sum += std::abs(int(rgb[at(x - 1, y)]) - 2 * int(rgb[at(x, y)]) + int(rgb[at(x + 1, y)]));
+          terms += 1;
+        }
+    EXPECT_GT(terms, 3000);
+    return sum / terms;
+  };
+  const double smooth = roughness(&m.normals), flat = roughness(nullptr);
+  std::printf("ball of water: mean second difference along rows %.2f levels (Phong), %.2f (flat)\n", smooth, flat);
+  EXPECT_LT(smooth, 1.5);
+  EXPECT_GT(flat, 2 * smooth);
+}
+
 }  // namespace
 }  // namespace pbf

@@ -108,8 +108,8 @@ void project_particles(const Camera& cam, const Colormap& colormap, double spher
 // sphere's front surface at each pixel centre) and then its solid triangles, then shading of
 // the nearest per pixel.
 void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs, float sphere_radius,
-                 const TileBins& triangle_bins, const std::vector<ScreenPolygon>& polygons, const Rgb& background,
-                 int width, std::vector<unsigned char>& rgb, std::vector<float>& depth) {
+                 const TileBins& triangle_bins, const std::vector<ScreenPolygon>& polygons, const Camera& cam,
+                 const Rgb& background, int width, std::vector<unsigned char>& rgb, std::vector<float>& depth) {
   const int x0 = tile % bins.tiles_x * kTile, y0 = tile / bins.tiles_x * kTile;
   const int x1 = std::min(bins.area_width, x0 + kTile), y1 = std::min(bins.area_height, y0 + kTile);
   float zbuf[kTile * kTile];
@@ -156,8 +156,10 @@ void render_tile(int tile, const TileBins& bins, const std::vector<Disc>& discs,
         std::copy(background.begin(), background.end(), out);
         continue;
       }
-      if (owner[k] >= n) {  // a solid: flat shaded
-        std::copy(polygons[owner[k] - n].colour.begin(), polygons[owner[k] - n].colour.end(), out);
+      if (owner[k] >= n) {  // a solid: flat shaded; water per pixel
+        const ScreenPolygon& polygon = polygons[owner[k] - n];
+        const Rgb colour = polygon.water ? render::water_pixel(polygon, cam, px + 0.5, py + 0.5) : polygon.colour;
+        std::copy(colour.begin(), colour.end(), out);
         continue;
       }
       const Disc& d = discs[owner[k]];
@@ -306,8 +308,8 @@ void ImageRenderer::render(const Domain& domain, const real* x, const real* y, c
   const int tile_count = bins.count();
 #pragma omp parallel for schedule(dynamic, 1)
   for (int tile = 0; tile < tile_count; ++tile)
-    render_tile(tile, bins, discs, static_cast<float>(spec_.radius), triangle_bins, polygons, spec_.background, W, rgb,
-                depth);
+    render_tile(tile, bins, discs, static_cast<float>(spec_.radius), triangle_bins, polygons, cam, spec_.background, W,
+                rgb, depth);
   for (int py = 0; py < H; ++py)
     for (int px = layout.scene_width; px < W; ++px)
       std::copy(spec_.background.begin(), spec_.background.end(), &rgb[(static_cast<std::size_t>(py) * W + px) * 3]);

@@ -112,17 +112,24 @@ ScreenPolygon project_triangle(const Camera& cam, const SolidSurface& surface, s
   poly.c = nc[2] / d - poly.a * cam.cx - poly.b * cam.cy;
   if (!std::isfinite(poly.a) || !std::isfinite(poly.b) || !std::isfinite(poly.c)) return poly;
 
-  if (surface.water) {  // the corners' normals averaged (else the face's), toward the camera
-    Vec3 shade = n;
-    if (surface.normals) {
-      Vec3 sum{0, 0, 0};
-      for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 3; ++c) sum[c] += (*surface.normals)[tri[k]][c];
-      if (finite(sum) && !(sum == Vec3{0, 0, 0})) shade = unit(sum);
+  if (surface.water) {  // the corners' normals toward the side seen (else the face's), for water_pixel
+    const bool flip = dot(nc, corners[0][0]) > 0;
+    poly.water = true;
+    for (int k = 0; k < 3; ++k) {
+      Vec3 shade = n;
+      if (surface.normals) {
+        const auto& m = (*surface.normals)[tri[k]];
+        const Vec3 v{m[0], m[1], m[2]};
+        if (finite(v) && !(v == Vec3{0, 0, 0})) shade = unit(v);
+      }
+      Vec3 sc{dot(shade, cam.right), dot(shade, cam.up), dot(shade, cam.forward)};
+      if (flip) sc = {-sc[0], -sc[1], -sc[2]};
+      for (int c = 0; c < 3; ++c) {
+        poly.normal[k][c] = static_cast<float>(sc[c]);
+        poly.corner[k][c] = static_cast<float>(corners[0][k][c]);
+      }
     }
-    Vec3 sc{dot(shade, cam.right), dot(shade, cam.up), dot(shade, cam.forward)};
-    if (dot(sc, corners[0][0]) > 0) sc = {-sc[0], -sc[1], -sc[2]};
-    poly.colour = water_colour(sc, corners[0][0]);
+    poly.colour = water_colour(flip ? Vec3{-nc[0], -nc[1], -nc[2]} : nc, corners[0][0]);
   } else {
   // Flat Lambert shading with the normal of the side seen, in the light's axes (z toward the viewer).
   const double toward = d > 0 ? -1 : 1;
@@ -198,6 +205,31 @@ void rasterize(const ScreenPolygon& p, int x0, int y0, int x1, int y1, float* zb
       if (depth < zbuf[k]) zbuf[k] = depth, owner[k] = id;
     }
   }
+}
+
+Rgb water_pixel(const ScreenPolygon& p, const Camera& cam, double qx, double qy) {
+  // The point seen: on the ray through the pixel, at the polygon's depth there.
+  const double inverse_depth = p.a * qx + p.b * qy + p.c;
+  if (!(inverse_depth > 0)) return p.colour;
+  const double z = 1 / inverse_depth;
+  const Vec3 seen{(qx - cam.cx) / cam.focal * z, -(qy - cam.cy) / cam.focal * z, z};
+  // Its barycentric weights in the triangle (clamped: a pixel centre on an edge of a clipped
+  // polygon may lie a hair outside).
+  const Vec3 a{p.corner[0][0], p.corner[0][1], p.corner[0][2]};
+  const Vec3 e1 = sub(Vec3{p.corner[1][0], p.corner[1][1], p.corner[1][2]}, a);
+  const Vec3 e2 = sub(Vec3{p.corner[2][0], p.corner[2][1], p.corner[2][2]}, a), e = sub(seen, a);
+  const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), d1 = dot(e, e1), d2 = dot(e, e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0)) return p.colour;
+  double w[3] = {0, (d22 * d1 - d12 * d2) / det, (d11 * d2 - d12 * d1) / det};
+  w[0] = 1 - w[1] - w[2];
+  double total = 0;
+  for (double& x : w) total += (x = std::clamp(x, 0.0, 1.0));
+  Vec3 normal{0, 0, 0};
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) normal[c] += w[k] / total * p.normal[k][c];
+  if (!finite(normal) || normal == Vec3{0, 0, 0}) return p.colour;
+  return water_colour(unit(normal), seen);
 }
 
 }  // namespace pbf::render

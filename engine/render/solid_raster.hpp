@@ -31,6 +31,10 @@ struct ScreenPolygon {
   double a = 0, b = 0, c = 0;                    // 1 / depth = a x + b y + c over the screen (perspective-correct)
   float x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;  // bounding box
   Rgb colour{};
+  // Water is shaded per pixel: its corners' normals (camera axes, toward the side seen),
+  // interpolated at the point seen, where the triangle's corners are (camera space).
+  bool water = false;
+  float corner[3][3] = {}, normal[3][3] = {};
 
   std::optional<TileRange> tiles(const TileBins& bins) const {
     if (corners == 0) return std::nullopt;
@@ -51,5 +55,10 @@ std::vector<ScreenPolygon> project_solids(const Camera& cam, const std::vector<S
 // and owner takes `id`.
 void rasterize(const ScreenPolygon& p, int x0, int y0, int x1, int y1, float* zbuf, std::uint32_t* owner,
                std::uint32_t id);
+
+// A water polygon's colour at the pixel centre (qx, qy): WaterShading's Fresnel, diffuse and
+// highlight with the normal interpolated from its corners' (Phong shading), so the facets of
+// the mesh do not show.
+Rgb water_pixel(const ScreenPolygon& p, const Camera& cam, double qx, double qy);
 
 }  // namespace pbf::render
