@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <barrier>
+#include <map>
 #include <cmath>
 #include <numbers>
 #include <thread>
@@ -171,6 +172,60 @@ SurfaceCloud ball(double s, double r, const Vec& centre) {
     }
   }
   return c;
+}
+
+// Along a periodic axis the fluid runs on across the faces: a layer in a domain periodic along
+// x, 16 spacings long, 8 layers deep over half its length and 4 over the other (two steps, one
+// of them on the faces), meshed as placed and shifted by 4 spacings along x (wrapped). Its top
+// is the same surface moved: at every voxel column the top's height is the shifted layer's,
+// the columns next to the faces included (mirrored there instead of wrapped, the step on the
+// faces would be a flat top), and each encloses the lattice's volume (the faces close it).
+TEST(Surface, APeriodicLayerRunsOnAcrossItsFaces) {
+  const double s = 0.01, hi[3] = {0.16, 0.08, 0.16};
+  SurfaceSettings st = settings_for(s, hi);
+  st.periodic[0] = true;
+  auto layer = [&](int shift) {
+    SurfaceCloud c;
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < 8; ++j)
+        for (int k = 0; k < (i < 8 ? 8 : 4); ++k) {
+          c.x.push_back(real(((i + shift) % 16 + 0.5) * s)), c.y.push_back(real((j + 0.5) * s));
+          c.z.push_back(real((k + 0.5) * s)), c.volume.push_back(s * s * s);
+        }
+    return c;
+  };
+  // The top's height over each voxel column (its vertices on vertical edges, facing up).
+  const double v = st.voxel;
+  auto heights = [&](const SurfaceMesh& m) {
+    std::map<std::pair<long, long>, double> top;
+    for (std::size_t k = 0; k < m.mesh.vertices.size(); ++k) {
+      const auto& x = m.mesh.vertices[k];
+      const double i = x[0] / v - 0.5, j = x[1] / v - 0.5;
+      if (m.normals[k][2] < 0.5 || std::fabs(i - std::round(i)) > 1e-4 || std::fabs(j - std::round(j)) > 1e-4) continue;
+      auto& z = top[{std::lround(i), std::lround(j)}];
+      z = std::max(z, x[2]);
+    }
+    return top;
+  };
+  const SurfaceCloud placed = layer(0), shifted = layer(4);
+  const SurfaceMesh a = reconstruct_surface(placed, st), b = reconstruct_surface(shifted, st);
+  const double lattice_volume = double(placed.size()) * s * s * s;
+  for (const SurfaceMesh* m : {&a, &b}) {
+    EXPECT_EQ(manifold_defect(m->mesh), "");
+    EXPECT_NEAR(enclosed_volume(m->mesh) / lattice_volume, 1, 0.02);
+  }
+  const auto top_a = heights(a), top_b = heights(b);
+  const long n = std::lround(hi[0] / v), moved = std::lround(4 * s / v);
+  int compared = 0, next_to_a_face = 0;
+  for (const auto& [column, z] : top_a) {
+    const auto other = top_b.find({(column.first + moved) % n, column.second});
+    ASSERT_NE(other, top_b.end()) << column.first << " " << column.second;
+    EXPECT_NEAR(other->second, z, 1e-5) << "column " << column.first << " " << column.second;
+    ++compared;
+    next_to_a_face += column.first == 0 || column.first == n - 1;
+  }
+  EXPECT_GT(compared, 300);
+  EXPECT_GT(next_to_a_face, 20);
 }
 
 TEST(Surface, SphereHasItsRadiusAndNoBumpsAtParticleScale) {

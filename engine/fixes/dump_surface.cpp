@@ -9,7 +9,8 @@
 // The domain's faces that are walls (not periodic, not open) close the surface: the fluid is
 // mirrored across them, so the surface meets a wall square at the water's height, and the
 // wetted wall is part of the mesh (walls = "closed": a tank's water is one closed body), or
-// left out (walls = "open": the free surface alone), or the walls are ignored ("none"). The
+// left out (walls = "open": the free surface alone), or the walls are ignored ("none"). A
+// periodic axis's faces cut the surface as walls do, the fluid running on across them. The
 // fluid is mirrored across the faces of solids at rest too (`solids`), so the surface meets an
 // obstacle or a mesh tank square; it runs on into the solid and closes inside it, hidden.
 //

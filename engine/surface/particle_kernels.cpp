@@ -23,7 +23,7 @@ SurfaceParticles with_images(const SurfaceCloud& cloud, const SurfaceSettings& s
   const std::vector<real>* pos[3] = {&cloud.x, &cloud.y, &cloud.z};
   std::vector<real>* out[3] = {&p.x, &p.y, &p.z};
   for (std::size_t i = 0; i < n && s.walls != SurfaceWalls::none; ++i) {
-    // Along each axis: the face within R to mirror across (-1 lower, +1 upper, 0 none).
+    // Along each axis: the face within R to mirror (or wrap) across (-1 lower, +1 upper, 0 none).
     int near[3] = {0, 0, 0};
     for (int a = 0; a < 3; ++a) {
       const double c = (*pos[a])[i];
@@ -31,19 +31,30 @@ SurfaceParticles with_images(const SurfaceCloud& cloud, const SurfaceSettings& s
       if (s.wall[2 * a] && to_lo < s.radius && to_lo <= to_hi) near[a] = -1;
       else if (s.wall[2 * a + 1] && to_hi < s.radius) near[a] = 1;
     }
-    // One image per non-empty set of those faces (at a corner, the images of images too).
+    // One image per non-empty set of those faces (at a corner, the images of images too):
+    // mirrored across a wall, translated across a periodic face (the fluid beyond it).
     for (int set = 1; set < 8; ++set) {
       bool ok = true;
       for (int a = 0; a < 3; ++a)
         if (((set >> a) & 1) && near[a] == 0) ok = false;
       if (!ok) continue;
+      int flips = 0;
       for (int a = 0; a < 3; ++a) {
         const double c = (*pos[a])[i];
         const double face = near[a] < 0 ? s.lo[a] : s.hi[a];
-        out[a]->push_back(((set >> a) & 1) ? static_cast<real>(2 * face - c) : static_cast<real>(c));
+        double image = c;
+        if ((set >> a) & 1) {
+          if (s.periodic[a]) {
+            image = c - near[a] * (s.hi[a] - s.lo[a]);
+          } else {
+            image = 2 * face - c;
+            flips |= 1 << a;
+          }
+        }
+        out[a]->push_back(static_cast<real>(image));
       }
       p.source.push_back(static_cast<std::uint32_t>(i));
-      p.flips.push_back(static_cast<std::uint8_t>(set));
+      p.flips.push_back(static_cast<std::uint8_t>(flips));
     }
   }
   // Across a solid's face: x - 2 d n (a vector attribute keeps its value: near a wall the

@@ -24,7 +24,9 @@ SurfaceSettings scene_surface_settings(Simulation& sim, double voxel_spacings, d
   const Domain& d = sim.domain();
   for (int a = 0; a < 3; ++a) {
     s.lo[a] = d.lo[a], s.hi[a] = d.hi[a];
-    for (int side = 0; side < 2; ++side) s.wall[2 * a + side] = !d.periodic[a] && !d.open[2 * a + side];
+    // (A periodic face closes the surface too; its images are the fluid beyond it.)
+    for (int side = 0; side < 2; ++side) s.wall[2 * a + side] = d.periodic[a] || !d.open[2 * a + side];
+    s.periodic[a] = d.periodic[a];
   }
   return s;
 }

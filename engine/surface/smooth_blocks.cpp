@@ -32,6 +32,8 @@ void close_walls(VoxelBlocks& f, const SurfaceSettings& s, bool as_mirror) {
         state[a][l] = 0, mirror[a][l] = g;
         if (s.wall[2 * a] && g < 0) state[a][l] = g == -1 ? 1 : 2, mirror[a][l] = -1 - g;
         else if (s.wall[2 * a + 1] && g >= f.n[a]) state[a][l] = g == f.n[a] ? 1 : 2, mirror[a][l] = 2 * f.n[a] - 1 - g;
+        // What the smoothing reads beyond a periodic face is the fluid there: the far side's.
+        if (as_mirror && s.periodic[a] && state[a][l] == 1) mirror[a][l] = g < 0 ? f.n[a] - 1 : 0;
       }
     for (int k = 0; k < B; ++k)
       for (int j = 0; j < B; ++j) {

@@ -29,7 +29,10 @@
 // mirrored across it, so phi meets the wall as if the fluid went on (the surface stands square
 // to the wall, at the fluid's true height), and the voxels beyond the face are set so that the
 // surface crosses exactly at the face: closed, the mesh includes the wetted wall (one closed
-// body); open, those triangles are left out (only the free surface). The solids' faces (the
+// body); open, those triangles are left out (only the free surface). Along a periodic axis
+// the particles within R of a face continue across it (images translated by the domain's
+// length, not mirrored), so the surface runs on as the fluid does, and the faces close it (or,
+// open, leave it cut there, to tile). The solids' faces (the
 // cloud's mirrors) mirror their particles too, so the surface meets a solid square as it meets
 // a wall; it runs on into the solid as far as the mirrored fluid reaches (up to R and half a
 // spacing), where the solid hides it, and closes there.
@@ -90,7 +93,8 @@ struct SurfaceSettings {
   int smoothing = 1;          // passes of a (1 2 1) / 4 filter over phi along each axis
   SurfaceWalls walls = SurfaceWalls::closed;
   double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};  // the domain
-  std::array<bool, 6> wall{};  // which faces (x-, x+, y-, ...) are walls
+  std::array<bool, 6> wall{};  // which faces (x-, x+, y-, ...) close the surface (walls, periodic faces)
+  std::array<bool, 3> periodic{};  // periodic axes: their faces' images are translated, not mirrored
   double memory_limit = 4.0 * (1ull << 30);     // bytes the grid may take
 };
 
@@ -127,14 +131,15 @@ void check_surface_input(const SurfaceCloud& cloud, const SurfaceSettings& setti
 struct SurfacePart {
   int axis = 0;
   long first = -(1L << 40), end = 1L << 40;  // the block layers along axis this part meshes
-  // Called by every part together, once a round: `blocks` (x, y, z block coordinates, three
-  // entries a block) becomes every part's list joined in part order, and `error` the first
-  // part's error (empty: none). Unset for a single part.
+  // Called by every part together, at each agreement (voxel_blocks.cpp): `blocks` (numbers:
+  // block coordinates and statuses) becomes every part's list joined in part order, and
+  // `error` the first part's error (empty: none). Unset for a single part.
   std::function<void(std::vector<std::int64_t>& blocks, std::string& error)> agree;
 };
 
-// The parts as slabs: the block layers across the domain's longest axis, cut so that each
-// part has about as many particles, and which particles each part's cloud needs.
+// The parts as slabs: the block layers across the domain's longest axis that is not periodic,
+// cut so that each part has about as many particles, and which particles each part's cloud
+// needs. A domain periodic along every axis is meshed by the first part alone.
 struct SurfaceSlabs {
   // `mirrors`: whether any particle is mirrored across a solid's face (its image reaches further).
   SurfaceSlabs(const SurfaceSettings& settings, bool mirrors);
@@ -151,6 +156,7 @@ struct SurfaceSlabs {
 
  private:
   double lo_ = 0, hi_ = 1, voxel_ = 1, reach_ = 0;
+  bool whole_ = false;  // every axis periodic: one part meshes everything
   std::vector<long> first_;  // per part, and the layers' end
 };
 

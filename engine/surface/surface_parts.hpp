@@ -81,7 +81,8 @@ VoxelBlocks voxel_blocks(const SurfaceParticles& p, const std::vector<ParticleKe
 
 // The voxels beyond the walls (after each round again: a full block computed since holds other
 // values at their mirrors). With `as_mirror`, the first layer takes its mirror voxel's phi
-// instead (what the smoothing reads beyond a wall: the fluid as if it went on).
+// instead (what the smoothing reads beyond a wall: the fluid as if it went on), or beyond a
+// periodic face the far side's first layer (the fluid there).
 void close_walls(VoxelBlocks& f, const SurfaceSettings& s, bool as_mirror);
 // Smoothing: passes of the binomial filter (1 2 1) / 4 along each axis over the computed
 // blocks (a voxel's neighbours in the next block through the halo), beyond a wall reading the

@@ -135,8 +135,13 @@ SurfaceMesh join_surface_pieces(const std::vector<SurfacePiece>& pieces, const S
 }
 
 SurfaceSlabs::SurfaceSlabs(const SurfaceSettings& s, bool mirrors) {
-  for (int a = 1; a < 3; ++a)
-    if (s.hi[a] - s.lo[a] > s.hi[axis] - s.lo[axis]) axis = a;
+  // The longest axis that is not periodic (the smoothing reads across a periodic face the far
+  // side's voxels, which another slab holds); with none, one part meshes everything.
+  axis = -1;
+  for (int a = 0; a < 3; ++a)
+    if (!s.periodic[a] && (axis < 0 || s.hi[a] - s.lo[a] > s.hi[axis] - s.lo[axis])) axis = a;
+  whole_ = axis < 0;
+  if (whole_) axis = 0;
   lo_ = s.lo[axis], hi_ = s.hi[axis];
   const long voxels = std::max(1L, std::lround((hi_ - lo_) / s.voxel));  // as VoxelBlocks divides the domain
   voxel_ = (hi_ - lo_) / static_cast<double>(voxels);
@@ -171,6 +176,10 @@ void SurfaceSlabs::cut(const std::vector<std::int64_t>& count, int parts) {
 SurfacePart SurfaceSlabs::part(int r) const {
   SurfacePart p;
   p.axis = axis;
+  if (whole_) {  // the first part everything, the others nothing
+    if (r > 0) p.first = p.end;
+    return p;
+  }
   const std::size_t parts = first_.size() - 1, k = static_cast<std::size_t>(r);
   if (k > 0) p.first = first_[k];
   if (k + 1 < parts) p.end = first_[k + 1];
@@ -178,6 +187,7 @@ SurfacePart SurfaceSlabs::part(int r) const {
 }
 
 bool SurfaceSlabs::needs(int r, double x) const {
+  if (whole_) return r == 0;
   const std::size_t k = static_cast<std::size_t>(r);
   const double B = VoxelBlocks::kBlock;
   // (A particle beyond the domain counts where the neighbour cells put it: at its face.)

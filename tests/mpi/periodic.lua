@@ -4,7 +4,8 @@
 -- faces, and meets itself on the other side; every rank's box meets a periodic face or a
 -- neighbour's, so ghosts cross the faces as images. Writes OUT/f_*.txt (id, position,
 -- velocity, density, |omega|), OUT/probes.csv (probes and gauges beside and across the
--- periodic faces, extent, a percentile) and OUT/thermo.csv. -v steps=N (default 200);
+-- periodic faces, extent, a percentile), OUT/thermo.csv and OUT/surface/surface_*.ply.
+-- -v steps=N (default 200);
 -- -v read=FILE continues from a restart, -v save=FILE writes one at the end.
 local s = 0.02
 if var.read then
@@ -25,6 +26,8 @@ pbf.compute("v", "speed")
 pbf.compute("err", "density_error")
 pbf.compute("it", "iterations")
 local out = var.out or "out/periodic"
+-- The surface across the periodic faces (meshed in slabs along z, the one axis not periodic).
+pbf.fix("surface", "dump/surface", {path = out .. "/surface/surface_*.ply", every = 100})
 pbf.fix("dump", "dump/text", {path = out .. "/f_*.txt", every = 40,
                               fields = {"id", "position", "velocity", "density", "vorticity_magnitude"}})
 -- Points beside the faces x = 0 and x = 0.8, y = 0 and y = 0.2: their neighbourhoods reach across.
