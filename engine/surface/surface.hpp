@@ -32,7 +32,7 @@
 // body); open, those triangles are left out (only the free surface). Along a periodic axis
 // the particles within R of a face continue across it (images translated by the domain's
 // length, not mirrored), so the surface runs on as the fluid does, and the faces close it (or,
-// open, leave it cut there, to tile). The solids' faces (the
+// open, leave it cut there). The solids' faces (the
 // cloud's mirrors) mirror their particles too, so the surface meets a solid square as it meets
 // a wall; it runs on into the solid as far as the mirrored fluid reaches (up to R and half a
 // spacing), where the solid hides it, and closes there.
