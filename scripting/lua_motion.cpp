@@ -54,12 +54,7 @@ class FunctionMotion : public Motion {
       throw;
     }
     lua_pop(L, 1);
-    for (int c = 0; c < 6; ++c) {
-      const double v = c < 3 ? pose.translate[c] : pose.rotate_deg[c - 3];
-      if (!std::isfinite(v) || std::abs(v) > 1e6)
-        throw Error(fmt::format("{} returned {}[{}] = {}: a pose needs finite numbers of magnitude at most 1e6", what,
-                                c < 3 ? "translate" : "rotate", c % 3 + 1, std::isnan(v) ? "nan" : fmt::format("{}", v)));
-    }
+    check_pose(pose, what);
     return pose;
   }
 

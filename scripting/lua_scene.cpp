@@ -7,13 +7,7 @@
 #include "engine/io/load_particles.hpp"
 #include "engine/io/restart.hpp"
 #include "engine/io/scene_file.hpp"
-#include "engine/sph/lattice.hpp"
-#include "engine/distributed/comm.hpp"
-#include "engine/geometry/mesh_file.hpp"
-#include "engine/geometry/region.hpp"
-#include "engine/geometry/mesh_sdf.hpp"
-#include "engine/geometry/mesh_surface.hpp"
-#include "engine/geometry/shape.hpp"
+#include "engine/core/scene_commands.hpp"
 #include "engine/core/simulation.hpp"
 #include "scripting/script_state.hpp"
 
@@ -33,17 +27,7 @@ int l_domain(lua_State* L) {
   State& S = state(L);
   if (!lua_isnoneornil(L, 1)) {
     S.not_running("pbf.domain");
-    const Params p = table_arg(L, 1, "pbf.domain",
-                               {{"lo", ParamType::Vector3, std::nullopt, "m", ""},
-                                {"hi", ParamType::Vector3, std::nullopt, "m", ""},
-                                ParamSpec{"periodic", ParamType::StringList, Names{}, "", ""}.one_of({"x", "y", "z"})});
-    Domain d;
-    for (int a = 0; a < 3; ++a) {
-      d.lo[a] = p.vec3("lo")[a];
-      d.hi[a] = p.vec3("hi")[a];
-    }
-    for (const std::string& axis : p.names("periodic")) d.periodic[axis[0] - 'x'] = true;
-    S.sim.set_domain(d);
+    S.sim.set_domain(domain_from(table_arg(L, 1, "pbf.domain", domain_params())));
   }
   const Domain& d = S.sim.domain();
   lua_createtable(L, 0, 3);
@@ -116,67 +100,13 @@ int l_lattice(lua_State* L) {
       lua_pop(L, 1);
     }
   }
-  const Params p = table_arg(L, 1, "pbf.lattice",
-                             {{"lo", ParamType::Vector3, std::nullopt, "m", "", true},
-                              {"hi", ParamType::Vector3, std::nullopt, "m", "", true},
-                              {"spacing", ParamType::Real, std::nullopt, "m", ""},
-                              {"velocity", ParamType::Vector3, Vec3{0, 0, 0}, "m/s", ""},
-                              {"center", ParamType::Vector3, std::nullopt, "m", "", true},
-                              {"radius", ParamType::Real, 0.0, "m", ""},
-                              {"mesh", ParamType::String, std::nullopt, "", "", true},
-                              {"orient", ParamType::Bool, std::nullopt, "", "", true},
-                              ParamSpec{"scale", ParamType::Vector3, Vec3{1, 1, 1}, "", ""}.or_one_number(),
-                              {"rotate", ParamType::Vector3, Vec3{0, 0, 0}, "deg", ""},
-                              {"translate", ParamType::Vector3, Vec3{0, 0, 0}, "m", ""}});
-  const Vec3 v = p.vec3("velocity");
-  const double radius = p.real("radius");
-  if (radius < 0 || (radius > 0) != p.has("center"))
-    throw Error("pbf.lattice: a sphere needs both 'center' and a positive 'radius'");
-  if (radius > 0 && p.has("mesh")) throw Error("pbf.lattice: give a sphere or a mesh, not both");
-  if (p.has("orient") && !p.has("mesh")) throw Error("pbf.lattice: 'orient' applies to a 'mesh' only");
-  // The region: lo and hi, or the mesh's bounds (within the domain) where they are left out.
-  std::unique_ptr<Shape> shape;
-  Vec3 lo{}, hi{};
-  if (p.has("mesh")) {
-    const std::string& file = p.string("mesh");
-    const double spacing = p.real("spacing");
-    if (!(spacing > 0)) throw Error(fmt::format("pbf.lattice: spacing must be positive, got {}", spacing));
-    for (double factor : p.vec3("scale"))
-      if (!(factor > 0 && factor <= 1e6)) throw Error(fmt::format("pbf.lattice: 'scale' must be in (0, 1e6], got {}", factor));
-    TriangleMesh mesh = read_mesh_file(file);
-    orient_surface(mesh, fmt::format("pbf.lattice: mesh file '{}'", file), !p.has("orient") || p.boolean("orient"));
-    Placement placement;
-    placement.scale = p.vec3("scale");
-    for (int a = 0; a < 3; ++a) {
-      placement.rotate_deg[a] = p.vec3("rotate")[a];
-      placement.translate[a] = p.vec3("translate")[a];
-    }
-    place(mesh, placement);
-    const auto bounds_of_mesh = bounds(mesh);
-    const Domain& domain = S.sim.domain();
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::max(bounds_of_mesh[0][a], domain.lo[a]);
-      hi[a] = std::min(bounds_of_mesh[1][a], domain.hi[a]);
-      if (!(hi[a] > lo[a]) && !(p.has("lo") && p.has("hi")))
-        throw Error(fmt::format("pbf.lattice: mesh file '{}' lies outside the domain: it spans [{:.6g}, {:.6g}] along "
-                                "{}, the domain [{:.6g}, {:.6g}]",
-                                file, bounds_of_mesh[0][a], bounds_of_mesh[1][a], "xyz"[a], domain.lo[a], domain.hi[a]));
-    }
-    shape = mesh_shape(mesh, spacing / 2, 2 * spacing);
-  } else if (radius > 0) {
-    shape = sphere_shape({p.vec3("center")[0], p.vec3("center")[1], p.vec3("center")[2]}, radius, Placement{});
-  }
-  if (p.has("lo")) lo = p.vec3("lo");
-  if (p.has("hi")) hi = p.vec3("hi");
-  if (!shape && !(p.has("lo") && p.has("hi"))) throw Error("pbf.lattice: give 'lo' and 'hi' (or a 'mesh' to fill)");
-  const std::size_t first = S.sim.particles().size();
-  const std::size_t added = add_lattice(S.sim, lo.data(), hi.data(), p.real("spacing"), v.data(), shape.get());
+  const LatticeAdded added = lattice_command(S.sim, table_arg(L, 1, "pbf.lattice", lattice_params()), "pbf.lattice");
   if (velocity_function) {
     lua_pushvalue(L, velocity_function);
     lua_setfield(L, 1, "velocity");
-    velocities_from_function(L, velocity_function, S.sim.particles(), first);
+    velocities_from_function(L, velocity_function, S.sim.particles(), added.first);
   }
-  lua_pushinteger(L, static_cast<lua_Integer>(added));
+  lua_pushinteger(L, static_cast<lua_Integer>(added.added));
   return 1;
 }
 
@@ -185,14 +115,7 @@ int l_lattice(lua_State* L) {
 int l_delete(lua_State* L) {
   State& S = state(L);
   S.not_running("pbf.delete");
-  const Params p = table_arg(L, 1, "pbf.delete", Region::params());
-  Region region(p);
-  region.check_scene(S.sim);
-  std::vector<char> drop;
-  region.mark_inside(S.sim, drop);
-  std::size_t removed = S.sim.particles().remove(drop);
-  if (S.sim.particles().distributed()) removed = static_cast<std::size_t>(comm::sum(static_cast<std::int64_t>(removed)));
-  S.sim.positions_changed();
+  const std::size_t removed = delete_command(S.sim, table_arg(L, 1, "pbf.delete", delete_params()));
   lua_pushinteger(L, static_cast<lua_Integer>(removed));
   return 1;
 }

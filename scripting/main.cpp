@@ -15,10 +15,7 @@
 #include <chrono>
 #include <filesystem>
 #include <thread>
-#include <mutex>
 #include <omp.h>
-#include <spdlog/pattern_formatter.h>
-#include <spdlog/sinks/base_sink.h>
 #include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
@@ -33,58 +30,6 @@
 #include "scripting/script.hpp"
 
 namespace {
-
-// "%*" in the log pattern: "warning: " before warnings and errors, nothing before info,
-// so thermo lines stay clean columns.
-class LevelPrefix : public spdlog::custom_flag_formatter {
- public:
-  void format(const spdlog::details::log_msg& msg, const std::tm&, spdlog::memory_buf_t& dest) override {
-    static const std::string warning = "warning: ", error = "error: ", debug = "debug: ";
-    const std::string* prefix = nullptr;
-    if (msg.level == spdlog::level::warn) prefix = &warning;
-    else if (msg.level >= spdlog::level::err) prefix = &error;
-    else if (msg.level <= spdlog::level::debug) prefix = &debug;
-    if (prefix) dest.append(prefix->data(), prefix->data() + prefix->size());
-  }
-  std::unique_ptr<custom_flag_formatter> clone() const override { return std::make_unique<LevelPrefix>(); }
-};
-
-// The log file's copy of every line the logger prints on stdout, formatted the same way.
-class LogFileSink : public spdlog::sinks::base_sink<std::mutex> {
- protected:
-  void sink_it_(const spdlog::details::log_msg& msg) override {
-    spdlog::memory_buf_t line;
-    formatter_->format(msg, line);
-    pbf::log_file::write({line.data(), line.size()});
-  }
-  void flush_() override {}  // log_file::write flushes every line
-};
-
-// Info lines on stdout, warnings and errors on stderr (where a user who sends the output to a
-// file still sees them). spdlog flushes every line, so a terminal shows them in order.
-class ConsoleSink : public spdlog::sinks::base_sink<std::mutex> {
- protected:
-  void sink_it_(const spdlog::details::log_msg& msg) override {
-    spdlog::memory_buf_t line;
-    formatter_->format(msg, line);
-    std::FILE* stream = msg.level >= spdlog::level::warn ? stderr : stdout;
-    if (stream == stderr) std::fflush(stdout);  // what came before it comes first
-    std::fwrite(line.data(), 1, line.size(), stream);
-    std::fflush(stream);
-  }
-  void flush_() override { std::fflush(stdout); }
-};
-
-void setup_logging(const std::string& level) {
-  std::vector<spdlog::sink_ptr> sinks = {std::make_shared<ConsoleSink>(), std::make_shared<LogFileSink>()};
-  auto logger = std::make_shared<spdlog::logger>("pbfengine", sinks.begin(), sinks.end());
-  auto formatter = std::make_unique<spdlog::pattern_formatter>();
-  formatter->add_flag<LevelPrefix>('*').set_pattern("%*%v");
-  logger->set_formatter(std::move(formatter));
-  logger->set_level(spdlog::level::from_str(level));
-  logger->flush_on(spdlog::level::info);
-  spdlog::set_default_logger(logger);
-}
 
 // A bad command line: one line on stderr, exit code 2.
 int command_line_error(const std::string& message) {
@@ -351,7 +296,7 @@ int main(int argc, char** argv) {
   // A write past the file-size limit (ulimit -f, a full quota) would kill the process with
   // SIGXFSZ; ignored, the write fails (EFBIG) and the engine reports it, naming the file.
   std::signal(SIGXFSZ, SIG_IGN);
-  setup_logging(level);
+  pbf::log_file::setup_logging(level);
   if (log_path != "none") {
     const std::string why = pbf::log_file::open(log_path);
     if (!why.empty())

@@ -2,6 +2,7 @@
 // and pushes plain Lua values back. Engine errors become one Lua error "FILE:LINE: message".
 #include "scripting/script.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 
 #include "engine/distributed/comm.hpp"
 #include "engine/core/names.hpp"
+#include "engine/core/scene_commands.hpp"
 #include "engine/core/simulation.hpp"
 #include "engine/registry/style_registry.hpp"
 #include "scripting/log_file.hpp"
@@ -94,13 +96,7 @@ int l_uncompute(lua_State* L) {
 int l_value(lua_State* L) {
   State& S = state(L);
   const std::string id = lua::string(L, 1, "pbf.value: the compute id");
-  Compute* c = S.sim.find_compute(id);
-  if (!c) throw Error(fmt::format("pbf.value: no compute with id '{}'", id));
-  if (S.sim.global_count() == 0 && S.sim.particle_mass() == 0)  // (a drained scene has none, and is measured)
-    throw Error(fmt::format("pbf.value('{}'): there are no particles yet", id));
-  if (S.sim.particles().distributed() && !c->runs_distributed())
-    throw Error(fmt::format("pbf.value('{}'): compute '{}' ({}) does not run on several MPI ranks yet", id, id,
-                            c->style()));
+  Compute* c = &compute_to_evaluate(S.sim, id, "pbf.value");
   std::vector<double> v;
   if (c->per_particle()) {  // the value of the particle with id k at key k + 1 (gaps: removed particles)
     std::vector<std::int64_t> ids;
@@ -277,13 +273,50 @@ int print_line(lua_State* L, bool every_rank) {
   }
   std::size_t size = 0;
   const char* text = lua_tolstring(L, -1, &size);
-  std::fwrite(text, 1, size, stdout);
-  std::fflush(stdout);  // in order with the info lines, which spdlog flushes
+  log_file::console({text, size}, false);  // in order with the info lines, which spdlog flushes
   log_file::write({text, size});
   return 0;
 }
 int l_print(lua_State* L) { return print_line(L, false); }
 int l_print_all(lua_State* L) { return print_line(L, true); }
+
+// Ctrl-C in Lua code (Script::set_interruptible): the signal handler may only set a hook,
+// which raises the error at the next instruction, as lua.c's does.
+lua_State* interruptible_state = nullptr;
+
+void interrupt_hook(lua_State* L, lua_Debug*) {
+  lua_sethook(L, nullptr, 0, 0);
+  luaL_error(L, "interrupted (Ctrl-C)");
+}
+
+extern "C" void on_lua_interrupt(int) {
+  if (interruptible_state)
+    lua_sethook(interruptible_state, interrupt_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
+}
+
+// SIGINT stops Lua code while one exists; the action before comes back after.
+class LuaInterrupt {
+ public:
+  LuaInterrupt(lua_State* L, bool on) : L_(L), on_(on) {
+    if (!on_) return;
+    interruptible_state = L;
+    struct sigaction action = {};
+    action.sa_handler = on_lua_interrupt;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &previous_);
+  }
+  ~LuaInterrupt() {
+    if (!on_) return;
+    sigaction(SIGINT, &previous_, nullptr);
+    interruptible_state = nullptr;
+    lua_sethook(L_, nullptr, 0, 0);  // one the signal set that the code ended before meeting
+  }
+
+ private:
+  lua_State* L_;
+  bool on_;
+  struct sigaction previous_ = {};
+};
 
 }  // namespace
 
@@ -339,24 +372,34 @@ void Script::set_variables(const std::vector<std::pair<std::string, std::string>
 }
 
 void Script::run_file(const std::string& path) {
-  lua_State* L = state_->L;
   state_->script_path = path;
   if (!std::filesystem::is_regular_file(path)) throw Error(fmt::format("{}: cannot open the script", path), true);
-  // Lua shortens long chunk names in its messages; find that short form to put the path back.
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw Error(fmt::format("{}: cannot read the script", path), true);
+  run_chunk(text.str(), path);
+}
+
+void Script::run_text(const std::string& text, const std::string& name) {
+  state_->script_path = name;
+  run_chunk(text, name);
+}
+
+// Lua shortens long chunk names in its messages; the short form is found to put the path back.
+void Script::run_chunk(const std::string& text, const std::string& path) {
+  lua_State* L = state_->L;
   const std::string chunk = "@" + path;
   lua_Debug ar;
   luaL_loadbuffer(L, "return", 6, chunk.c_str());
-  lua_getinfo(L, ">S", &ar);
+  lua_getinfo(L, ">S", &ar);  // (pops the function)
   const std::string short_src = ar.short_src;
   auto full_path = [&](std::string message) {
     if (short_src != path && message.rfind(short_src + ":", 0) == 0) message = path + message.substr(short_src.size());
     return message;
   };
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw Error(fmt::format("{}: cannot read the script", path), true);
-  ScriptReader reader(text.str());
+  ScriptReader reader(text);
+  LuaInterrupt interrupt(L, interruptible_);
   if (lua_load(L, ScriptReader::read, &reader, chunk.c_str(), "t") != LUA_OK) {
     std::string message = lua_tostring(L, -1);  // load errors are strings
     lua_pop(L, 1);

@@ -11,7 +11,9 @@ namespace pbf {
 namespace {
 
 volatile std::sig_atomic_t interrupt_flag = 0, restart_flag = 0;
-struct sigaction previous_interrupt, previous_terminate, previous_user1;
+std::string stop_reason;  // request_stop's, else Ctrl-C's
+struct sigaction previous_interrupt, previous_terminate, previous_user1, paused_interrupt;
+bool watching = false;
 
 // A rank told to stop while it waits for a rank that died (mpirun sends SIGTERM to the others
 // when one crashes) would never reach the end of its step: it ends this long after the signal
@@ -30,6 +32,7 @@ extern "C" void on_restart_request(int) { restart_flag = 1; }
 
 InterruptWatch::InterruptWatch() {
   interrupt_flag = 0;
+  stop_reason.clear();
   struct sigaction action = {};
   action.sa_handler = on_interrupt;
   sigemptyset(&action.sa_mask);
@@ -40,9 +43,11 @@ InterruptWatch::InterruptWatch() {
   restart_flag = 0;
   action.sa_handler = on_restart_request;
   sigaction(SIGUSR1, &action, &previous_user1);
+  watching = true;
 }
 
 InterruptWatch::~InterruptWatch() {
+  watching = false;
   alarm(0);
   sigaction(SIGINT, &previous_interrupt, nullptr);
   if (comm::distributed()) sigaction(SIGTERM, &previous_terminate, nullptr);
@@ -53,7 +58,23 @@ InterruptWatch::Requests InterruptWatch::requested() {
   double seen[2] = {interrupt_flag != 0 ? 1.0 : 0.0, restart_flag != 0 ? 1.0 : 0.0};
   if (seen[1] > 0) restart_flag = 0;  // one restart a signal (one arriving now waits for the next step)
   comm::max(std::span<double>(seen));
-  return {seen[0] > 0, seen[1] > 0};
+  Requests r{seen[0] > 0, seen[1] > 0, stop_reason};
+  if (r.stop && r.reason.empty())
+    r.reason = interrupt_flag != 0 || !comm::distributed() ? "interrupted (Ctrl-C)" : "stopped by another rank";
+  return r;
+}
+
+InterruptPause::InterruptPause() {
+  if (watching) sigaction(SIGINT, &previous_interrupt, &paused_interrupt);
+}
+
+InterruptPause::~InterruptPause() {
+  if (watching) sigaction(SIGINT, &paused_interrupt, nullptr);
+}
+
+void InterruptWatch::request_stop(const std::string& reason) {
+  if (stop_reason.empty()) stop_reason = reason;
+  interrupt_flag = 1;
 }
 
 }  // namespace pbf

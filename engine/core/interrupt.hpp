@@ -22,11 +22,26 @@ class InterruptWatch {
   // same step, the first at which any of them saw it.
   struct Requests {
     bool stop = false, restart = false;
+    std::string reason;  // a stop's: "interrupted (Ctrl-C)", or what request_stop said
   };
   static Requests requested();
+  // Asks, from inside a step (a Python callback that raised), for the stop Ctrl-C makes:
+  // after the step, with a restart; the message starts with `reason`.
+  static void request_stop(const std::string& reason);
 };
 
-// A run stopped by Ctrl-C after writing a restart; the command line exits with 130.
+// While one exists inside a run (a Python callback runs), SIGINT has the action it had before
+// the run (Python's), so that Ctrl-C reaches the code running then; the run's comes back after.
+class InterruptPause {
+ public:
+  InterruptPause();
+  ~InterruptPause();
+  InterruptPause(const InterruptPause&) = delete;
+  InterruptPause& operator=(const InterruptPause&) = delete;
+};
+
+// A run stopped by Ctrl-C (or request_stop) after writing a restart; the command line exits
+// with 130.
 class Interrupted : public Error {
  public:
   Interrupted(const std::string& message, std::string restart) : Error(message), restart_(std::move(restart)) {}

@@ -115,7 +115,7 @@ std::size_t Particles::remove(const std::vector<char>& drop) {
 }
 
 void Particles::fill(Field& field) const {
-  field.data.assign(static_cast<std::size_t>(field.spec.components), std::vector<real>(ids_.size(), real(0)));
+  field.data.assign(static_cast<std::size_t>(field.spec.components), RealArray(ids_.size(), real(0)));
 }
 
 FieldId Particles::declare(const FieldSpec& spec) {
@@ -166,7 +166,7 @@ void Particles::free_undeclared() {
     Field& field = fields_[f];
     if (field.declared || !field.live) continue;
     field.live = false;
-    std::vector<std::vector<real>>().swap(field.data);
+    std::vector<RealArray>().swap(field.data);
   }
 }
 
@@ -179,7 +179,7 @@ double Particles::mean_mass() const {
 void Particles::reset(std::vector<std::int64_t> ids, std::int64_t next_id) {
   check_ids(ids, next_id);
   ghosts_ = 0;
-  ids_ = std::move(ids);
+  ids_.assign(ids.begin(), ids.end());
   next_id_ = settled_ = next_id;  // their fields are the file's
   global_ = ids_.size();
   unplaced_ = distributed_ ? global_ : 0;
@@ -190,7 +190,7 @@ void Particles::reset(std::vector<std::int64_t> ids, std::int64_t next_id) {
 void Particles::reset_share(std::vector<std::int64_t> ids, std::size_t global, std::int64_t next_id) {
   check_ids(ids, next_id);
   ghosts_ = 0;
-  ids_ = std::move(ids);
+  ids_.assign(ids.begin(), ids.end());
   next_id_ = settled_ = next_id;
   global_ = global;
   unplaced_ = global;
@@ -209,7 +209,7 @@ void check_ids(std::span<const std::int64_t> ids, std::int64_t next_id) {
   }
 }
 
-void Particles::swap_values(FieldId field, int component, std::vector<real>& values) {
+void Particles::swap_values(FieldId field, int component, RealArray& values) {
   auto& mine = fields_[field].data[static_cast<std::size_t>(component)];
   if (values.size() != mine.size())
     throw Error(fmt::format("Particles::swap_values: field '{}' has {} values, the array to swap {}",
@@ -217,11 +217,11 @@ void Particles::swap_values(FieldId field, int component, std::vector<real>& val
   mine.swap(values);
 }
 
-void Particles::permute(std::span<const std::uint32_t> order, std::vector<real>* buffer) {
+void Particles::permute(std::span<const std::uint32_t> order, RealArray* buffer) {
   if (ghosts_) throw Error("Particles::permute with ghosts present");
   const std::size_t n = order.size();
-  std::vector<real> own;
-  std::vector<real>& next = buffer ? *buffer : own;
+  RealArray own;
+  RealArray& next = buffer ? *buffer : own;
   next.resize(n);
   // Each array gathered into `next`, which then takes its place: one pass per array.
   for (auto& field : fields_) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/field_array.hpp"
 #include "engine/core/real.hpp"
 
 namespace pbf {
@@ -122,7 +123,7 @@ class Particles {
   // length: a pass that computes a whole new array from the old one (new positions from the
   // neighbours' old ones) writes it elsewhere and swaps, instead of copying it back. Pointers
   // taken to either before are to the other afterwards.
-  void swap_values(FieldId field, int component, std::vector<real>& values);
+  void swap_values(FieldId field, int component, RealArray& values);
 
   real* x() { return data(kPosition, 0); }
   real* y() { return data(kPosition, 1); }
@@ -157,7 +158,7 @@ class Particles {
   // Reorders every field: particle i of the result is particle order[i] of before.
   // `buffer`: an array to gather into, which trades places with each field's array in turn
   // (else permute takes its own); it holds one of them, reordered, afterwards.
-  void permute(std::span<const std::uint32_t> order, std::vector<real>* buffer = nullptr);
+  void permute(std::span<const std::uint32_t> order, RealArray* buffer = nullptr);
   // This process's particles in ascending id order: order_by_id()[k] is the memory index of
   // the particle with the k-th smallest id (what files written in id order follow).
   std::vector<std::uint32_t> order_by_id() const;
@@ -169,13 +170,13 @@ class Particles {
  private:
   struct Field {
     FieldSpec spec;
-    std::vector<std::vector<real>> data;  // one array per component; empty once freed
+    std::vector<RealArray> data;  // one array per component; empty once freed
     bool live = true;
     bool declared = true;  // declared in the current round
   };
   void fill(Field& field) const;  // zeroed arrays for every particle
   std::vector<Field> fields_;
-  std::vector<std::int64_t> ids_;
+  IdArray ids_;
   std::size_t ghosts_ = 0, global_ = 0, unplaced_ = 0;
   std::int64_t next_id_ = 0, settled_ = 0;
   bool distributed_ = false;
@@ -183,7 +184,7 @@ class Particles {
   void check_not_frozen(const char* what) const;
   void resize_all(std::size_t n);  // every live field and the ids
   // permute()'s buffer for the ids, kept so that reordering allocates nothing.
-  std::vector<std::int64_t> id_scratch_;
+  IdArray id_scratch_;
 };
 
 // Throws unless the ids are distinct and in 0..next_id-1 (what a restart's must be).

@@ -157,6 +157,7 @@ void RunLoop::run(std::int64_t steps, double until) {
   const double start = now();
   // What is missing first, then what is absurd.
   // (A scene with none may run when it had some, or a fix creates them: Simulation::particle_mass.)
+  check_masses();
   if (sim_.particle_mass() == 0)
     throw Error("run: there are no particles (create them with pbf.lattice or pbf.read_scene)");
   if (sim_.h_ <= 0) throw Error("run: the kernel radius h is not set (pbf.kernel_radius)");
@@ -201,7 +202,7 @@ void RunLoop::run(std::int64_t steps, double until) {
       throw Error(fmt::format("{}; the last restart is '{}' (step {})", e.what(), note.path, note.step), e.located());
     }
     const InterruptWatch::Requests signals = InterruptWatch::requested();
-    if (signals.stop) stop_interrupted();
+    if (signals.stop) stop_interrupted(signals.reason);
     if (signals.restart) {
       const std::string path = write_restart_now("signal");
       spdlog::info("SIGUSR1: wrote restart '{}' after step {} (t = {} s); the run goes on", path, sim_.step_,

@@ -31,6 +31,8 @@ class RunLoop {
   void plan(std::int64_t steps, double until);
   void prepare();
   void check_start_state() const;
+  // Every particle's mass positive and finite (a Python program may write them).
+  void check_masses() const;
   void check_pipeline() const;
   void distribute();
   void init_new_particles();
@@ -43,7 +45,7 @@ class RunLoop {
   std::size_t first_non_finite() const;
   std::string blew_up(std::size_t i) const;
   void check_clumping() const;
-  [[noreturn]] void stop_interrupted();
+  [[noreturn]] void stop_interrupted(const std::string& reason);
   std::string write_restart_now(const char* prefix);
   double now() const { return omp_get_wtime(); }
 

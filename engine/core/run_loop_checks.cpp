@@ -50,6 +50,16 @@ void RunLoop::plan(std::int64_t steps, double until) {
   sim_.run_plan_ = {count, steps >= 0 ? t + count * dt : until};
 }
 
+void RunLoop::check_masses() const {
+  const auto& P = sim_.particles_;
+  const real* m = P.mass();
+  for (std::size_t i = 0; i < P.size(); ++i)
+    if (!(m[i] > 0) || !std::isfinite(m[i]))
+      throw Error(fmt::format("particle {} has mass {} kg: a particle's mass must be positive and finite; the run "
+                              "cannot start",
+                              P.ids()[i], m[i]));
+}
+
 // The state a run starts from must be one a step can advance: finite, and no particle so
 // fast that one step carries it across the whole domain (it would leave at once).
 void RunLoop::check_start_state() const {
@@ -82,11 +92,12 @@ std::string RunLoop::write_restart_now(const char* prefix) {
   return path;
 }
 
-// Ctrl-C: the step is complete; flush the fixes' files, save the state, stop.
-void RunLoop::stop_interrupted() {
+// Ctrl-C (or a stop requested): the step is complete; flush the fixes' files, save the
+// state, stop.
+void RunLoop::stop_interrupted(const std::string& reason) {
   for (const auto& f : sim_.fixes_) f->finish(sim_);
   const std::string path = write_restart_now("interrupted");
-  throw Interrupted(fmt::format("interrupted (Ctrl-C) after step {} (t = {} s): wrote restart '{}'", sim_.step_,
+  throw Interrupted(fmt::format("{} after step {} (t = {} s): wrote restart '{}'", reason, sim_.step_,
                                 sim_.time(), path),
                     path);
 }

@@ -282,7 +282,7 @@ class Simulation {
   std::uint64_t positions_version_ = 1, grid_version_ = 0, density_version_ = 0, ghost_positions_version_ = 0;
   std::vector<real> density_, volume_;
   std::uint64_t volume_version_ = 0;
-  std::vector<real> scratch_[kScratchArrays];
+  RealArray scratch_[kScratchArrays];
   std::vector<DensityBoundary*> boundaries_;
   std::vector<const SolidBody*> solids_;
 };

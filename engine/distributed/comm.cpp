@@ -15,6 +15,7 @@ namespace pbf::comm {
 namespace {
 
 bool started = false;
+bool owner = false;  // this code initialised MPI, so finalises it
 int my_rank = 0, world_size = 1;
 
 
@@ -34,8 +35,15 @@ bool launched_by_mpi() {
 
 void start(int& argc, char**& argv) {
   if (started || !launched_by_mpi()) return;
-  int provided = 0;
-  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (initialized) {
+    owner = false;  // started by another library of this process (Python's mpi4py): its to finalize
+  } else {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    owner = true;
+  }
   started = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &my_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &world_size);
@@ -43,7 +51,9 @@ void start(int& argc, char**& argv) {
 
 void stop() {
   if (!started) return;
-  MPI_Finalize();
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (owner && !finalized) MPI_Finalize();
   started = false;
 }
 

@@ -9,6 +9,15 @@
 
 namespace pbf {
 
+void check_pose(const Pose& pose, const std::string& what) {
+  for (int c = 0; c < 6; ++c) {
+    const double v = c < 3 ? pose.translate[c] : pose.rotate_deg[c - 3];
+    if (!std::isfinite(v) || std::abs(v) > 1e6)
+      throw Error(fmt::format("{} returned {}[{}] = {}: a pose needs finite numbers of magnitude at most 1e6", what,
+                              c < 3 ? "translate" : "rotate", c % 3 + 1, std::isnan(v) ? "nan" : fmt::format("{}", v)));
+  }
+}
+
 namespace {
 
 // The pose's six numbers, so interpolation is one loop.

@@ -28,6 +28,10 @@ class Motion {
   virtual std::string description() const = 0;
 };
 
+// Throws unless the pose a script's function returned has finite numbers of magnitude at
+// most 1e6 (`what` names the function and the time).
+void check_pose(const Pose& pose, const std::string& what);
+
 // Poses at given times, linear between them or on a Catmull-Rom spline through them (C1:
 // no jump in the wall's velocity at a key). Before the first key the solid holds the first
 // pose, after the last the last.

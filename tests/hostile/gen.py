@@ -2286,6 +2286,423 @@ def gen_probes(g):
         "accepted", "-")
 
 
+# ======================================================================= the Python module
+
+# The case programs of the python group start from these lines (the scene of the Lua cases:
+# 64 particles at spacing 0.01 m in a 0.1 m box, h = 0.02 m, dt = 1 ms).
+PY_IMPORT = ["import pbfengine"]
+PY_SIM = PY_IMPORT + ['sim = pbfengine.Simulation(log=None, log_level="warn")']
+PY_HEAD = PY_SIM + ["sim.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))", "sim.kernel_radius(0.02)", "sim.timestep(0.001)"]
+PY_SCENE = PY_HEAD + ["sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=0.01)  # 64 particles"]
+PY_PIPE = PY_SCENE + ['sim.fix("gravity", "gravity")', 'sim.fix("pbf", "pbf")', 'sim.fix("walls", "box")']
+PY_PRE = {"import": PY_IMPORT, "sim": PY_SIM, "head": PY_HEAD, "scene": PY_SCENE, "pipe": PY_PIPE}
+PY_LATTICE = "sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=0.01, %s)"
+PY_BALL = 'sim.fix("ball", "solid", shape="sphere", center=(0.06, 0.06, 0.06), radius=0.02, %s)'
+PY_JET = 'sim.fix("jet", "emitter", center=(0.08, 0.05, 0.08), normal=(0, 0, -1), size=(0.02, 0.02), %s)'
+# Sends Ctrl-C to the case's process a second after this line, from outside (the engine holds
+# the interpreter's lock while it runs, so no Python thread could).
+PY_CTRL_C = ('subprocess.Popen(["/bin/sh", "-c", "sleep 1; kill -INT %d" % os.getpid()], '
+             "stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)")
+
+
+def gen_python(g):
+    """The Python module (python/, docs/python.md): each case a short program that does one
+    hostile thing and must end with an exception of a given type whose message contains the
+    given text (refused), or end normally with one warning (warned) or none (accepted): never
+    a crash, a hang, or a silent acceptance. A case marked xfail= documents a defect of the
+    module as it is: the correct outcome is recorded, and the replay reports the case as a
+    known defect until it passes (then it fails, asking for the marker to go)."""
+    d = "{dir}"
+
+    def case(name, what, body, outcome, expect, pre="pipe", imports=(), setup="", xfail=None):
+        head = [f"# {what}", "# Expected: " + (f"{outcome}, {expect}" if outcome != "accepted" else outcome)]
+        if xfail:
+            head.append(f"# Known defect (xfail): {xfail}")
+        lines, target = [], 0
+        for line in list(imports) + PY_PRE[pre] + body:
+            if line.startswith("@"):
+                line = line[1:]
+                target = len(head) + len(lines) + 1
+            lines.append(line)
+        assert "LINE" not in expect or target, name
+        expect = expect.replace("LINE", f"{name}.py:{target}")
+        head[1] = head[1].replace("LINE", f"{name}.py:{target}")
+        g.file(f"{name}.py", "\n".join(head + lines) + "\n")
+        if xfail:
+            setup = "; ".join(s for s in (setup, "xfail=" + xfail.replace(";", "\\;")) if s)
+        g.case(name, f"{d}/{name}.py", outcome, expect, setup)
+
+    # ------------------------------------------------------------------ keyword parameters
+    g.section("Wrong types for every kind of keyword parameter (the values Lua's tables take: number, integer, "
+              "bool, string, vector, pair, names, points, motion): pbfengine.Error naming the call, the parameter "
+              "and what was given.")
+
+    def lat(value):
+        return ["sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=%s)" % value]
+
+    case("t_number_str", "a number given as a str", lat('"0.01"'), "refused", "Error: lattice && 'spacing' && string",
+         pre="head")
+    case("t_number_none", "a number given as None", lat("None"), "refused", "Error: lattice && 'spacing' && None",
+         pre="head")
+    case("t_number_object", "a number given as an object()", lat("object()"), "refused",
+         "Error: lattice && 'spacing' && object", pre="head")
+    case("t_number_nan", "a number given as NaN", lat('float("nan")'), "refused",
+         "Error: lattice && 'spacing' && finite", pre="head")
+    case("t_number_bool", "a number given as True (a bool is no number, as in Lua)", lat("True"), "refused",
+         "Error: lattice && 'spacing' && bool", pre="head")
+
+    def pbf(params):
+        return ['sim.unfix("pbf")', f'sim.fix("pbf", "pbf", {params})']
+
+    case("t_int_float", "an integer given as 4.5", pbf("iterations=4.5"), "refused",
+         "Error: fix 'pbf' (pbf) && 'iterations' && integer")
+    case("t_int_huge", "an integer beyond 64 bits (2**64)", pbf("iterations=2**64"), "refused",
+         "Error: fix 'pbf' (pbf) && 'iterations' && 18446744073709551616")
+    case("t_bool_number", "a bool given as 1", [PY_BALL % "wall_density=1"], "refused",
+         "Error: fix 'ball' (solid) && 'wall_density' && bool")
+    case("t_string_bytes", "a string given as bytes", ['sim.delete(region=b"box", lo=(0, 0, 0), hi=(1, 1, 1))'],
+         "refused", "Error: delete && 'region' && bytes")
+
+    def grav(value):
+        return [f'sim.fix("gravity", "gravity", acceleration={value})']
+
+    gexp = "Error: fix 'gravity' (gravity) && 'acceleration'"
+    case("t_vec_two", "a vector of 2", grav("(0, -9.81)"), "refused", gexp, pre="scene")
+    case("t_vec_four", "a vector of 4", grav("(0, 0, -9.81, 0)"), "refused", gexp + " && 4", pre="scene")
+    case("t_vec_str", "a vector given as a str", grav('"down"'), "refused", gexp + " && down", pre="scene")
+    case("t_vec_dict", "a vector given as a dict", grav('{"z": -9.81}'), "refused", gexp + " && dict", pre="scene")
+    case("t_vec_dict_int_keys", "a vector given as a dict {0: 0, 1: 0, 2: -9.81}", grav("{0: 0, 1: 0, 2: -9.81}"),
+         "refused", gexp + " && dict", pre="scene")
+    case("t_vec_numpy_2d", "a vector given as a 2 x 3 NumPy array", grav("numpy.zeros((2, 3))"), "refused", gexp,
+         pre="scene", imports=["import numpy"])
+    case("t_vec_nested_garbage", "a vector given as nested garbage", grav('[[0, 0], "z", None]'), "refused",
+         gexp + " && point 1", pre="scene")
+    case("t_vec_generator", "a vector given as a generator", grav("(a for a in (0, 0, -9.81))"), "refused",
+         gexp + " && generator", pre="scene")
+    case("t_vec_nan", "a vector with a NaN component", grav('(0, 0, float("nan"))'), "refused", gexp + " && finite",
+         pre="scene")
+    case("t_vec_bool", "a vector with a bool component", grav("(0, 0, True)"), "refused",
+         gexp + " && component 3 && bool", pre="scene")
+    case("t_vec_beyond_double", "a vector component beyond any double (-10**400)", grav("(0, 0, -10**400)"),
+         "refused", gexp, pre="scene")
+    case("t_pair_three", "a pair given as three numbers",
+         [PY_JET.replace("size=(0.02, 0.02), ", "") % "size=(0.02, 0.02, 0.02), speed=1"], "refused",
+         "Error: fix 'jet' (emitter) && 'size' && pair")
+    case("t_names_mixed", "a list of names with a number in it",
+         ['sim.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1), periodic=["x", 1])'], "refused",
+         "Error: domain && 'periodic' && entry 2", pre="sim")
+    case("t_points_pair", "a list of points with a point of two numbers",
+         ['sim.compute("p", "probe", points=[(0.03, 0.03)])'], "refused",
+         "Error: compute 'p' (probe) && 'points' && point 1")
+    case("t_motion_str", "a motion given as a str", [PY_BALL % 'motion="spin"'], "refused",
+         "Error: fix 'ball' (solid) && 'motion' && spin")
+
+    # ------------------------------------------------------------------ positional arguments
+    g.section("Wrong types and absurd values for the positional arguments (converted by pybind11: a TypeError "
+              "naming the method, or pbfengine.Error naming the value): str, bool, float for an integer, ints "
+              "beyond 64 bits, None, NaN, negative and absurd step counts, a pathlib.Path, NUL bytes.")
+    case("a_kernel_radius_str", "kernel_radius('0.02')", ['sim.kernel_radius("0.02")'], "refused",
+         "TypeError: kernel_radius", pre="sim")
+    case("a_kernel_radius_bool", "kernel_radius(True)", ["sim.kernel_radius(True)"], "refused",
+         "TypeError: kernel_radius || Error: kernel && bool", pre="sim")
+    case("a_run_float", "run(2.5)", ["sim.run(2.5)"], "refused", "TypeError: run")
+    case("a_run_bool", "run(True)", ["sim.run(True)"], "refused", "TypeError: run || Error: run && bool")
+    case("a_run_huge_int", "run(2**64)", ["sim.run(2**64)"], "refused",
+         "TypeError: run || Error: run && 18446744073709551616")
+    case("a_run_negative", "run(-5)", ["sim.run(-5)"], "refused", "Error: run && -5")
+    case("a_run_too_many", "run(10**10): more than 1e9 steps", ["sim.run(10**10)"], "refused",
+         "Error: run && 1e+09")
+    case("a_run_until_nan", "run_until(NaN)", ['sim.run_until(float("nan"))'], "refused",
+         "Error: run_until && finite")
+    case("a_fix_id_none", "fix(None, 'gravity')", ['sim.fix(None, "gravity")'], "refused", "TypeError: fix",
+         pre="scene")
+    case("a_thermo_columns_str", "thermo(columns='step'): a str for a list of names",
+         ['sim.thermo(every=1, columns="step")', "sim.run(1)"], "refused",
+         "Error: thermo && columns && a str || TypeError: thermo && str")
+    case("a_read_restart_pathlib", "read_restart(pathlib.Path('nope.restart')) of a missing file",
+         ['sim.read_restart(pathlib.Path("nope.restart"))'], "refused", "Error: nope.restart && no such file",
+         pre="sim", imports=["import pathlib"])
+    case("a_nul_path", "read_restart of a path with a NUL byte", ['sim.read_restart("a\\x00b.restart")'], "refused",
+         "Error: zero byte || ValueError: null byte || Error: b.restart", pre="sim")
+    case("a_nul_keyword", "a keyword with a NUL byte",
+         ['sim.fix("g2", "gravity", **{"accel\\x00eration": (0, 0, -1)})'], "refused",
+         "Error: zero byte || ValueError: null byte || Error: eration", pre="scene")
+
+    g.section("The Simulation itself: thread counts of 0, 10**6 and True, log levels and log paths, an unknown "
+              "keyword, an object that was never initialised.")
+    case("c_threads_zero", "Simulation(threads=0)", ["pbfengine.Simulation(threads=0, log=None)"], "refused",
+         "Error: Simulation && threads", pre="import")
+    case("c_threads_million", "Simulation(threads=10**6)", ["pbfengine.Simulation(threads=10**6, log=None)"],
+         "refused", "Error: Simulation && threads && 1000000", pre="import")
+    case("c_threads_bool", "Simulation(threads=True)",
+         ['pbfengine.Simulation(threads=True, log=None, log_level="warn")'], "refused",
+         "TypeError: threads || Error: threads && bool", pre="import")
+    case("c_log_level_loud", "Simulation(log_level='loud')", ['pbfengine.Simulation(log=None, log_level="loud")'],
+         "refused", "Error: log_level && loud", pre="import")
+    case("c_log_empty", "Simulation(log=''): an empty log path", ['pbfengine.Simulation(log="")'], "refused",
+         "Error: log && None", pre="import")
+    case("c_log_missing_dir", "a log in a directory that does not exist: the run goes on without it",
+         ['pbfengine.Simulation(log="nodir/x.log", log_level="warn")'], "warned", "nodir/x.log", pre="import")
+    case("c_unknown_keyword", "Simulation(thread=2)", ["pbfengine.Simulation(thread=2)"], "refused",
+         "TypeError: unexpected keyword argument 'thread'", pre="import")
+    case("c_new_without_init", "a Simulation made by __new__, never initialised, then used",
+         ["sim = pbfengine.Simulation.__new__(pbfengine.Simulation)", 'sim.field("position")'], "refused",
+         "TypeError: __init__ || Error: __init__", pre="import")
+
+    g.section("Unknown styles, keywords and ids: the message names them, with the name meant where one is close.")
+    case("n_fix_style", "an unknown fix style", ['sim.fix("g2", "gravty")'], "refused",
+         "Error: unknown fix style 'gravty' && did you mean 'gravity'")
+    case("n_compute_style", "an unknown compute style", ['sim.compute("k", "kinetic_enrgy")'], "refused",
+         "Error: unknown compute style 'kinetic_enrgy' && did you mean 'kinetic_energy'")
+    case("n_fix_keyword", "a misspelt keyword of a fix", ['sim.fix("g2", "gravity", acceleraton=(0, 0, -9.81))'],
+         "refused", "Error: fix 'g2' (gravity) && unknown parameter 'acceleraton' && did you mean 'acceleration'")
+    case("n_lattice_keyword", "a misspelt keyword of lattice", [PY_LATTICE % "spacng=0.01"], "refused",
+         "Error: lattice && 'spacng' && did you mean 'spacing'", pre="head")
+    case("n_compute_keyword", "a misspelt keyword of a compute",
+         ['sim.compute("p", "probe", point=[(0.03, 0.03, 0.02)])'], "refused",
+         "Error: compute 'p' (probe) && 'point' && did you mean 'points'")
+    case("n_value_unknown", "value() of a compute that does not exist", ['sim.value("nope")'], "refused",
+         "Error: value && 'nope'")
+    g.section("Fields and views: fields that do not exist, components out of range, writes to read-only views, "
+              "arrays of the wrong shape or dtype (NumPy's ValueError), views used after a run, a delete, a "
+              "lattice, a restart read, a run_file, a callback; views kept past their Simulation (they read the "
+              "memory they pinned: accepted, never freed memory); values written into views that the next run "
+              "must refuse.")
+    case("v_field_misspelt", "field('positon')", ['sim.field("positon")'], "refused",
+         "Error: 'positon' && did you mean 'position'")
+    case("v_field_not_declared", "field('density') before a run declares it", ['sim.field("density")'], "refused",
+         "Error: 'density' && when a run starts")
+    case("v_component_index", "component 3 of a vector field", ['sim.field("position")[3]'], "refused",
+         "IndexError: out of range")
+    case("v_readonly_assign", "writing into a read-only view", ['sim.field("position").z[0] = 1.0'], "refused",
+         "ValueError: read-only")
+    case("v_readonly_setflags", "making a read-only view writable", ['sim.field("position").z.setflags(write=True)'],
+         "refused", "ValueError: WRITEABLE")
+    case("v_shape", "3 values into a view of 64", ['sim.field("position", writable=True).z[:] = numpy.zeros(3)'],
+         "refused", "ValueError: broadcast && (3,) && (64,)", imports=["import numpy"])
+    case("v_dtype", "strings into a view of numbers",
+         ['sim.field("position", writable=True).z[:] = numpy.array(["a"] * 64)'], "refused",
+         "ValueError: could not convert string to float", imports=["import numpy"])
+    stale = "StaleViewError: 'position[2]' && taken at step 0 && field('position')"
+    case("v_stale_run", "a view used after a run", ['z = sim.field("position").z', "sim.run(1)", "z[0]"], "refused",
+         stale)
+    case("v_stale_write", "a writable view written after a run",
+         ['z = sim.field("position", writable=True).z', "sim.run(1)", "z[:] = 0.05"], "refused", stale)
+    case("v_stale_numpy", "a view given to a NumPy function after a run",
+         ['z = sim.field("position").z', "sim.run(1)", "numpy.mean(z)"], "refused", stale, imports=["import numpy"])
+    case("v_stale_delete", "a view used after delete() removed half the particles",
+         ['z = sim.field("position").z', 'sim.delete(region="box", lo=(0, 0, 0), hi=(0.1, 0.1, 0.04))', "z[0]"],
+         "refused", stale)
+    case("v_stale_restart", "a view of an empty Simulation used after read_restart filled it",
+         ['sim.write_restart("r.restart")', 'other = pbfengine.Simulation(log=None, log_level="warn")',
+          'z = other.field("position").z', 'other.read_restart("r.restart")', "z[0]"], "refused", stale)
+    case("v_stale_run_file", "a view used after run_file ran the scene",
+         ['open("one.lua", "w").write("pbf.run(1)\\n")', 'z = sim.field("position").z', 'sim.run_file("one.lua")',
+          "z[0]"], "refused", stale)
+    case("v_stale_from_callback", "a view taken in a callback, used after the run",
+         ["taken = []", 'sim.every("take", 1, lambda step, time: taken.append(sim.field("position").z))',
+          "sim.run(2)", "taken[0].max()"], "refused", "StaleViewError: 'position[2]' && taken at step 1")
+    case("v_stale_ids", "a view of the ids used after a run", ["ids = sim.ids()", "sim.run(1)", "ids[0]"], "refused",
+         "StaleViewError: ids()")
+    case("v_kept_past_simulation", "a view kept after `del sim; gc.collect()`: it keeps its Simulation, and reads "
+         "the particles as they were", [
+             'z = sim.field("position").z', "expected = z.copy()", "del sim", "gc.collect()",
+             'other = pbfengine.Simulation(log=None, log_level="warn")',
+             "other.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))", "other.kernel_radius(0.02)", "other.timestep(0.001)",
+             "other.lattice(lo=(0.01, 0.01, 0.01), hi=(0.09, 0.09, 0.09), spacing=0.01)",
+             'other.fix("pbf", "pbf")', "other.run(40)",
+             'assert numpy.array_equal(numpy.asarray(z), expected), "the view changed"', "print(float(z.sum()))"],
+         "accepted", "-", imports=["import gc", "import numpy"])
+    case("v_plain_array_past_simulation", "a plain array (numpy.asarray of a view) kept after the Simulation is "
+         "gone: it reads and writes the block it pinned, nobody else's", [
+             'raw = numpy.asarray(sim.field("position", writable=True).z)', "expected = raw.copy()",
+             "gone = weakref.ref(sim)", "del sim", "gc.collect()", 'assert gone() is None, "the Simulation lives on"',
+             'other = pbfengine.Simulation(log=None, log_level="warn")',
+             "other.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))", "other.kernel_radius(0.02)", "other.timestep(0.001)",
+             "other.lattice(lo=(0.01, 0.01, 0.01), hi=(0.09, 0.09, 0.09), spacing=0.01)",
+             'other.fix("pbf", "pbf")', "other.run(40)",
+             'assert numpy.array_equal(raw, expected), "the pinned block changed"', "raw[:] = 1e30",
+             "other.run(1)", 'assert other.copy("position").max() < 0.1, "a write reached another Simulation"'],
+         "accepted", "-", imports=["import gc", "import weakref", "import numpy"])
+    case("v_nan_position_run", "NaN written into the positions, then a run", [
+        'sim.field("position", writable=True).z[:] = float("nan")', "sim.run(1)"], "refused",
+         "Error: particle 0 && non-finite position")
+    case("v_mass_zero_run", "zero written into the masses, then a run", [
+        'sim.field("mass", writable=True)[:] = 0', "sim.run(1)"], "refused", "Error: mass")
+    case("v_mass_negative_run", "-1 written into the masses, then a run", [
+        'sim.field("mass", writable=True)[:] = -1', "sim.run(20)"], "refused", "Error: mass")
+    case("v_mass_nan_run", "NaN written into the masses, then a run", [
+        'sim.field("mass", writable=True)[:] = float("nan")', "sim.run(1)"], "refused", "Error: mass")
+
+    # ------------------------------------------------------------------ callbacks
+    g.section("Callbacks (every): ones that raise (stopping the run with pbfengine.Interrupted, a restart to "
+              "continue from, the exception chained), return garbage (ignored: accepted), call run() or fix() "
+              "from inside, are not callable or take no arguments, raise KeyboardInterrupt or an exception whose "
+              "str() fails; Ctrl-C while a run or a callback runs.")
+    case("cb_raises", "a callback that raises", ['sim.every("watch", 1, lambda step, time: 1 / 0)', "sim.run(3)"],
+         "refused", "Interrupted: callback 'watch' raised ZeroDivisionError && after step 1 && restart")
+    case("cb_returns_garbage", "a callback that returns an object (the value is ignored)", [
+        'sim.every("watch", 1, lambda step, time: object())', "sim.run(3)", 'assert sim.step == 3, sim.step'],
+         "accepted", "-")
+    case("cb_calls_run", "a callback that calls run()", ['sim.every("watch", 1, lambda step, time: sim.run(1))',
+                                                         "sim.run(3)"], "refused",
+         "Interrupted: callback 'watch' && run cannot be called during a run")
+    case("cb_calls_fix", "a callback that calls fix()", [
+        'sim.every("watch", 1, lambda step, time: sim.fix("late", "gravity"))', "sim.run(3)"], "refused",
+         "Interrupted: callback 'watch' && fix cannot be called during a run")
+    case("cb_not_callable", "every() given a number for the function", ['sim.every("watch", 1, 42)'], "refused",
+         "Error: every && function && int")
+    case("cb_no_parameters", "a callback that takes no arguments", ['sim.every("watch", 1, lambda: None)',
+                                                                    "sim.run(3)"], "refused",
+         "Interrupted: callback 'watch' && TypeError")
+    case("cb_keyboard_interrupt", "a callback that raises KeyboardInterrupt (Ctrl-C in Python code)", [
+        "def watch(step, time):", "    raise KeyboardInterrupt", 'sim.every("watch", 1, watch)', "sim.run(3)"],
+         "refused", "Interrupted: callback 'watch' && Ctrl-C && restart")
+    case("cb_exception_unprintable", "a callback raising an exception whose str() fails", [
+        "class Unprintable(Exception):", "    def __str__(self):", '        raise RuntimeError("no str")',
+        "def watch(step, time):", "    raise Unprintable()", 'sim.every("watch", 1, watch)', "sim.run(3)"],
+         "refused", "Interrupted: callback 'watch'")
+    case("cb_ctrl_c", "Ctrl-C during a run (sent from a callback, which then returns)", [
+        "def watch(step, time):", "    if step == 2:", "        os.kill(os.getpid(), signal.SIGINT)",
+        'sim.every("watch", 1, watch)', "sim.run(100)"], "refused",
+         "Interrupted: interrupted (Ctrl-C) && after step 2 && restart", imports=["import os", "import signal"])
+    case("cb_ctrl_c_in_python", "Ctrl-C while a callback runs Python code (a loop that waits)", [
+        "def watch(step, time):", "    os.kill(os.getpid(), signal.SIGINT)", "    while True:",
+        "        time_module.sleep(0.05)", 'sim.every("watch", 1, watch)', "sim.run(3)"], "refused",
+         "Interrupted: KeyboardInterrupt || Interrupted: Ctrl-C || KeyboardInterrupt",
+         imports=["import os", "import signal", "import time as time_module"], setup="timeout=5")
+    case("run_ctrl_c", "Ctrl-C from outside during a long run", [PY_CTRL_C, "sim.thermo(every=0)", "sim.run(10**8)"],
+         "refused", "Interrupted: interrupted (Ctrl-C) && restart", imports=["import os", "import subprocess"],
+         setup="timeout=20")
+    case("cb_writes_nan", "a callback that writes NaN into the positions", [
+        'sim.every("spoil", 1, lambda step, time: sim.field("position", writable=True).z.fill(float("nan")))',
+        "sim.run(3)"], "refused", "Error: non-finite position && !--check-every-hook")
+
+    # ------------------------------------------------------------------ functions as parameters
+    g.section("Python functions given as parameters (a lattice velocity, an emitter speed or velocity, a solid's "
+              "motion) that raise, return the wrong shape or type, return NaN (at once or later) or call run(): "
+              "pbfengine.Error naming the call, the parameter and where the function is defined.")
+    case("f_lattice_velocity_raises", "a lattice velocity function that raises",
+         [PY_LATTICE % "velocity=lambda x, y, z: 1 / 0"], "refused",
+         "Error: lattice && velocity function && ZeroDivisionError", pre="head")
+    case("f_lattice_velocity_short", "a lattice velocity function returning two numbers",
+         [PY_LATTICE % "velocity=lambda x, y, z: (1, 2)"], "refused", "Error: lattice && velocity && 2 values",
+         pre="head")
+    case("f_lattice_velocity_nan", "a lattice velocity function returning NaN",
+         [PY_LATTICE % 'velocity=lambda x, y, z: (0, 0, float("nan"))'], "refused",
+         "Error: lattice && velocity && not finite", pre="head")
+    case("f_lattice_velocity_atomic", "a lattice refused for its velocity function leaves the particles as they were",
+         ["try:", "    sim.lattice(lo=(0.07, 0.07, 0.07), hi=(0.09, 0.09, 0.09), spacing=0.01, "
+                  "velocity=lambda x, y, z: 1 / 0)",
+          "finally:", '    assert sim.count == 64, f"the refused lattice left {sim.count - 64} particles"'],
+         "refused", "Error: lattice && velocity function")
+    case("f_emitter_speed_raises", "an emitter speed function that raises",
+         ["@def speed(t, x, y, z):", "    return 1 / 0", PY_JET % "speed=speed", "sim.run(3)"], "refused",
+         "Error: 'jet' && 'speed' && ZeroDivisionError && LINE")
+    case("f_emitter_speed_tuple", "an emitter speed function returning a vector",
+         ["@def speed(t, x, y, z):", "    return (0, 0, -1)", PY_JET % "speed=speed", "sim.run(3)"], "refused",
+         "Error: 'jet' && 'speed' && not a number && LINE")
+    case("f_emitter_speed_bool", "an emitter speed function returning True",
+         ["@def speed(t, x, y, z):", "    return True", PY_JET % "speed=speed", "sim.run(3)"], "refused",
+         "Error: 'jet' && 'speed' && bool")
+    case("f_emitter_velocity_inf_later", "an emitter velocity function that returns infinity from t = 1.5 ms",
+         ["@def velocity(t, x, y, z):", '    return (0, 0, -1) if t < 0.0015 else (0, 0, float("inf"))',
+          PY_JET % "velocity=velocity", "sim.run(4)"], "refused",
+         "Error: 'jet' && 'velocity' && t = 0.0015 && finite && LINE")
+    case("f_motion_raises", "a motion function that raises",
+         ["@def motion(t):", "    return 1 / 0", PY_BALL % "motion=motion", "sim.run(2)"], "refused",
+         "Error: 'ball' && ZeroDivisionError && LINE")
+    case("f_motion_short", "a motion function returning a translation of two numbers",
+         ["@def motion(t):", '    return {"translate": (1, 2)}', PY_BALL % "motion=motion", "sim.run(2)"],
+         "refused", "Error: 'ball' && 'translate' && 2 values")
+    case("f_motion_nan_later", "a motion function that returns NaN from t = 1.5 ms",
+         ["@def motion(t):", '    return {"translate": (0, 0, 0) if t < 0.0015 else (float("nan"), 0, 0)}',
+          PY_BALL % "motion=motion", "sim.run(3)"], "refused", "Error: 'ball' && t = 0.002 && nan && LINE")
+    case("f_motion_calls_run", "a motion function that calls run()",
+         ["@def motion(t):", "    sim.run(1)", PY_BALL % "motion=motion", "sim.run(2)"], "refused",
+         "Error: 'ball' && run cannot be called during a run")
+    case("f_velocity_exception_unprintable", "a lattice velocity function raising an exception whose str() fails",
+         ["class Unprintable(Exception):", "    def __str__(self):", '        raise RuntimeError("no str")',
+          "def velocity(x, y, z):", "    raise Unprintable()", PY_LATTICE % "velocity=velocity"], "refused",
+         "Error: lattice && velocity function", pre="head")
+    case("f_keyframes_order", "keyframes whose times go back", ['pbfengine.keyframes([{"t": 1}, {"t": 0.5}])'],
+         "refused", "Error: keyframes && key 2", pre="import")
+
+    # ------------------------------------------------------------------ Lua
+    g.section("Lua from Python: run_file of a missing file, a syntax error, a runtime error, an engine error, an "
+              "empty path; -v variables that are not values; lua() with bad text; Lua's os.exit; Ctrl-C in a Lua "
+              "loop: pbfengine.Error naming FILE:LINE (lua:LINE for statements).")
+    case("l_run_file_missing", "run_file of a missing file", ['sim.run_file("nope.lua")'], "refused",
+         "Error: nope.lua", pre="sim")
+    case("l_run_file_syntax", "run_file of a script with a syntax error on line 2", [
+        'open("syn.lua", "w").write("pbf.domain{lo = {0, 0, 0}, hi = {1, 1, 1}\\npbf.run(1)\\n")',
+        'sim.run_file("syn.lua")'], "refused", "Error: syn.lua:2:", pre="sim")
+    case("l_run_file_runtime", "run_file of a script indexing nil on line 2", [
+        'open("rt.lua", "w").write("local x = nil\\nprint(x.y)\\n")', 'sim.run_file("rt.lua")'], "refused",
+         "Error: rt.lua:2: && nil", pre="sim")
+    case("l_run_file_engine_error", "run_file of a script whose line 1 the engine refuses", [
+        'open("e.lua", "w").write("pbf.kernel_radius(-1)\\n")', 'sim.run_file("e.lua")'], "refused",
+         "Error: e.lua:1: && kernel radius", pre="sim")
+    case("l_run_file_empty_path", "run_file('')", ['sim.run_file("")'], "refused", "Error: run_file && empty",
+         pre="sim")
+    case("l_run_file_variable_none", "run_file with a variable that is None", [
+        'open("v.lua", "w").write("print(var.n)\\n")', 'sim.run_file("v.lua", n=None)'], "refused",
+         "Error: 'n' || TypeError: 'n'", pre="sim")
+    case("l_run_file_variable_unread", "run_file with a variable the script never reads", [
+        'open("v.lua", "w").write("print(1)\\n")', 'sim.run_file("v.lua", m=3)'], "warned", "'m'", pre="sim")
+    case("l_lua_syntax", "lua() of unfinished text", ['sim.lua("pbf.run(")'], "refused", "Error: lua:1:", pre="sim")
+    case("l_lua_os_exit", "lua('os.exit(3)'): refused, so Python unwinds (finally blocks run)", [
+        "try:", '    sim.lua("os.exit(3)")', "finally:", '    print("unwound")'], "refused",
+         "Error: os.exit(3) && cannot end the process",
+         pre="sim", setup="stdout=unwound")
+    case("l_lua_ctrl_c", "Ctrl-C during lua('while true do end')", [PY_CTRL_C, 'sim.lua("while true do end")'],
+         "refused", "KeyboardInterrupt || Interrupted || Error: interrupted", pre="sim",
+         imports=["import os", "import subprocess"], setup="timeout=5")
+
+    # ------------------------------------------------------------------ files
+    g.section("Restarts, scene files and particle files that are missing, damaged, truncated, a FIFO or a device; "
+              "restarts written where they cannot be: pbfengine.Error naming the file (and the line); a refused "
+              "restart leaves the Simulation as it was.")
+    case("r_restart_missing", "read_restart of a missing file", ['sim.read_restart("nope.restart")'], "refused",
+         "Error: nope.restart && no such file", pre="sim")
+    case("r_restart_truncated", "read_restart of a restart cut in half", [
+        'sim.write_restart("r.restart")', 'data = open("r.restart", "rb").read()',
+        'open("t.restart", "wb").write(data[:len(data) // 2])',
+        'pbfengine.Simulation(log=None, log_level="warn").read_restart("t.restart")'], "refused",
+         "Error: t.restart && truncated")
+    case("r_restart_fifo", "read_restart of a FIFO", ['os.mkfifo("p.restart")', 'sim.read_restart("p.restart")'],
+         "refused", "Error: p.restart && not a regular file", pre="sim", imports=["import os"], setup="timeout=5")
+    case("r_restart_refused_keeps_simulation", "a refused restart leaves the Simulation empty", [
+        'open("g.restart", "wb").write(b"garbage" * 10)', "try:", '    sim.read_restart("g.restart")', "finally:",
+        '    assert sim.count == 0 and sim.step == 0, "the refused restart changed the Simulation"'], "refused",
+         "Error: g.restart && not a pbfengine restart", pre="sim")
+    case("r_write_restart_empty_path", "write_restart('')", ['sim.write_restart("")'], "refused",
+         "Error: write_restart && empty")
+    case("s_scene_short_header", "read_scene of a header that ends on line 2", [
+        'open("sc.txt", "w").write("3\\n0.001 0.02\\n")', 'sim.read_scene("sc.txt")'], "refused",
+         "Error: sc.txt:2:", pre="sim")
+    case("s_scene_device", "read_scene of /dev/zero", ['sim.read_scene("/dev/zero")'], "refused",
+         "Error: /dev/zero && not a regular file", pre="sim")
+    case("p_particles_short_row", "read_particles of a CSV whose row 2 has two fields", [
+        'open("p.csv", "w").write("x,y,z\\n0.01,0.02\\n")', 'sim.read_particles("p.csv")'], "refused",
+         "Error: p.csv:2:", pre="head")
+
+    g.section("The readers of output files (a few: tests/python/test_readers.py has the rest): ValueError naming "
+              "the file and the line, FileNotFoundError; a device or a FIFO is no file to read.")
+    case("rd_frame_missing", "read_frame of a missing file", ['pbfengine.read_frame("nope.txt")'], "refused",
+         "FileNotFoundError: nope.txt", pre="import")
+    case("rd_frame_not_a_number", "read_frame of a frame with a word on line 3", [
+        'open("f.txt", "w").write("2\\n1 2 3 4 5 6\\n1 2 x 4 5 6\\n")', 'pbfengine.read_frame("f.txt")'], "refused",
+         "ValueError: f.txt:3: && 'x'", pre="import")
+    case("rd_frame_device", "read_frame of /dev/zero", ['pbfengine.read_frame("/dev/zero")'], "refused",
+         "ValueError: /dev/zero && not a regular file", pre="import", setup="as=2G")
+    case("rd_frame_fifo", "read_frame of a FIFO", ['os.mkfifo("p.txt")', 'pbfengine.read_frame("p.txt")'], "refused",
+         "ValueError: p.txt && not a regular file", pre="import", imports=["import os"], setup="timeout=5")
+    case("rd_vtu_garbage", "read_vtu of 100 zero bytes", ['open("f.vtu", "wb").write(bytes(100))',
+                                                        'pbfengine.read_vtu("f.vtu")'], "refused",
+         "ValueError: f.vtu", pre="import")
+
+
 def main():
     random.seed(0)
     groups = [Group("lua", "Lua scripts: every parameter of every style, every pbf function, scripts that fight "
@@ -2296,9 +2713,11 @@ def main():
               Group("disk", "Full disks and paths that cannot be written"),
               Group("mesh", "Mesh files given to the solid fix and to pbf.lattice (run by mesh/run.lua)"),
               Group("cli", "Command-line misuse"),
-              Group("probes", "Probe and gauge points outside the domain and inside solids")]
+              Group("probes", "Probe and gauge points outside the domain and inside solids"),
+              Group("python", "The Python module: Python programs that misuse pbfengine (run by replay.py with "
+                              "--python and --pythonpath)")]
     gen = {"lua": gen_lua, "scene": gen_scene, "particles": gen_particles, "restart": gen_restart,
-           "disk": gen_disk, "mesh": gen_mesh, "cli": gen_cli, "probes": gen_probes}
+           "disk": gen_disk, "mesh": gen_mesh, "cli": gen_cli, "probes": gen_probes, "python": gen_python}
     total = 0
     for g in groups:
         gen[g.name](g)

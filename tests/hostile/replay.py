@@ -2,9 +2,11 @@
 """Replays the hostile-input corpus against a pbfengine binary.
 
     python3 tests/hostile/replay.py --binary build/pbfengine [--group lua] [--jobs 2] [-v]
+    python3 tests/hostile/replay.py --binary build/pbfengine --group python --pythonpath build/python
 
-Every group directory beside this script (cli/, lua/, scene/, particles/, restart/, disk/)
-holds a manifest, cases.tsv, one case a line, five tab-separated columns:
+Every group directory beside this script (cli/, lua/, scene/, particles/, restart/, disk/,
+mesh/, probes/, python/) holds a manifest, cases.tsv, one case a line, five tab-separated
+columns:
 
     name    command    outcome    expect    setup
 
@@ -41,6 +43,10 @@ setup     ';'-separated directives, applied in order:
                             behaviour would be to allocate without bound (not applied to a
                             sanitizer build, nor with HOSTILE_NO_AS=1 in the environment)
           timeout=SECONDS   the wall-clock limit (default --timeout)
+          xfail=REASON      a known defect: the case records the correct outcome, which the
+                            engine does not give yet; its failure is reported as "xfail"
+                            (not a failure of the replay), and its passing as a failure
+                            ("XPASS": remove the marker in gen.py). '\;' for a ';' in REASON
           needs=PROGRAM     skip the case when PROGRAM is not on the PATH (ffmpeg)
           touch=NAME        create an empty regular file NAME in the scratch directory
           mkdir=NAME        create the directory NAME (and its parents) in the scratch directory
@@ -69,6 +75,27 @@ field:NAME:components, fix_count, fix:K:id_len, fix:K:size (the K-th saved fix s
           crc                 recompute the payload's CRC-32 (only for semantic cases: a
                               flip must be caught by the CRC, so flips never recompute it)
 
+The python group (python/cases.tsv) runs Python programs against the module (python/,
+pbfengine): the command is the program, run by the interpreter of --python (default: the
+one running the replay) with --pythonpath (default: the binary's directory's python/, where
+the build puts the module) first on PYTHONPATH, in the case's scratch directory, with
+PYTHONFAULTHANDLER=1 (a crash prints the Python stack). A program catches nothing: it ends
+normally, or with an uncaught exception whose traceback's last entry, "TYPE: message", is
+what it raised. Outcomes and `expect` there:
+refused   `expect` is "TYPE: text && text ..." (or "TYPE" alone), alternatives separated by
+          " || ": the program ends with an uncaught exception whose class is named TYPE
+          (module left out: Error is pbfengine.Error, StaleViewError, Interrupted, TypeError,
+          ...) and whose message contains every text; a text written "!text" must not be in
+          it. Exit status 1, or death by SIGINT after an uncaught KeyboardInterrupt (Python's
+          way). "SystemExit: N" is an exit with status N and no traceback.
+warned    exit 0 and exactly one warning line ("warning: ..." from the engine, or Python's
+          "FILE:LINE: SomeWarning: ...") containing `expect` ("a && b").
+accepted  exit 0 and no warning: the program's own asserts passed.
+Any signal (but SIGINT as above), a hang, "Fatal Python error", "Exception ignored in" or a
+crash marker fails the case. A setup directive more: stdout=TEXT, TEXT must be on stdout.
+When the module cannot be imported the python cases fail, or are skipped when the group was
+not asked for by name.
+
 The replay prints one line per failing case and a summary, and exits 1 on any failure.
 Standard library only.
 """
@@ -95,6 +122,10 @@ CRASH_MARKERS = ("Segmentation fault", "terminate called", "runtime error:", "Ad
                  "LeakSanitizer", "UndefinedBehaviorSanitizer", "Assertion", "core dumped",
                  "stack smashing", "double free", "free(): invalid", "malloc(): ")
 CLI_HINT = "Run with --help for more information."
+# The Python group's: a C assert's "Assertion `...' failed", not Python's AssertionError.
+PY_CRASH_MARKERS = tuple(m for m in CRASH_MARKERS if m != "Assertion") + (
+    "Assertion `", "Fatal Python error", "Exception ignored in")
+PY_WARNING = re.compile(r"^(warning: |\S.*:\d+: \w*Warning: )")
 FORM = re.compile(r"^[^:\s][^:]*:(\d+:)? ")
 
 
@@ -282,6 +313,10 @@ class Runner:
         self.precision = None
         # A sanitizer's runtime reserves terabytes of address space: no RLIMIT_AS for it.
         self.no_as = bool(os.environ.get("HOSTILE_NO_AS")) or self.sanitized()
+        self.python = args.python
+        self.pythonpath = os.path.abspath(args.pythonpath or os.path.join(os.path.dirname(self.binary), "python"))
+        self.python_problem = None  # why the module cannot be imported (check_python)
+        self.python_optional = False  # skip, rather than fail, the python cases then
 
     def sanitized(self):
         try:
@@ -407,7 +442,21 @@ class Runner:
         return outcome
 
     def run_case(self, case):
-        """Returns (status, detail): status 'pass', 'fail' or 'skip'."""
+        """Returns (status, detail): status 'pass', 'fail', 'skip' or 'xfail' (a known defect, as
+        the case's xfail= says)."""
+        if case.group == "python" and self.python_problem:
+            return ("skip" if self.python_optional else "fail"), self.python_problem
+        status, detail = self.run_one(case)
+        reason = case.get("xfail")
+        if reason is None or status == "skip":
+            return status, detail
+        if status == "fail":
+            return "xfail", f"known defect: {reason} [now: {detail}]"
+        return "fail", f"XPASS: the case passes now; remove its xfail= marker in gen.py (it said: {reason})"
+
+    def run_one(self, case):
+        if case.group == "python":
+            return self.run_python(case)
         needs = case.get("needs")
         if needs and shutil.which(needs) is None:
             return "skip", f"needs {needs}"
@@ -443,6 +492,77 @@ class Runner:
         warned = [line for line in lines_of(out + err) if line.startswith("warning:")][:1]
         return "pass", f"{seconds:.2f} s, exit {rc}: {(warned + shown)[0][:300]!r}" if (shown[0] or warned) \
             else f"{seconds:.2f} s, exit {rc}"
+
+    # ------------------------------------------------------------ the python group
+
+    def python_env(self, case):
+        env = self.env(case)
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (self.pythonpath, os.environ.get("PYTHONPATH")) if p)
+        env["PYTHONFAULTHANDLER"] = "1"
+        env["PYTHONDONTWRITEBYTECODE"] = "1"
+        return env
+
+    def check_python(self):
+        """Sets python_problem when the interpreter cannot import the module."""
+        try:
+            r = subprocess.run([self.python, "-c", "import numpy, pbfengine"], capture_output=True, text=True,
+                               timeout=120, env=self.python_env(None), errors="replace", stdin=subprocess.DEVNULL)
+            last = (lines_of(r.stderr.strip()) or [""])[-1]
+            if r.returncode != 0:
+                self.python_problem = (f"cannot import pbfengine with {self.python} and PYTHONPATH={self.pythonpath} "
+                                       f"(--python, --pythonpath): {last}")
+        except (OSError, subprocess.TimeoutExpired) as e:
+            self.python_problem = f"cannot run {self.python} (--python): {e}"
+
+    def run_python(self, case):
+        scratch = os.path.join(self.root, case.group, case.name)
+        os.makedirs(scratch)
+        problem = self.prepare(case, scratch)
+        if problem:
+            return "fail", problem
+        timeout = float(case.get("timeout", self.timeout))
+        as_limit = case.get("as")
+        if as_limit and os.environ.get("HOSTILE_NO_AS"):
+            # The limit is the Python process's (the module's sanitizer, if any, cannot load
+            # without one of its own): a case that needs it is not run without it.
+            return "skip", "needs its address-space limit (HOSTILE_NO_AS is set)"
+        argv = [self.python] + shlex.split(self.expand(case.command, case, scratch))
+        rc, out, err, hung, seconds = self.execute(
+            argv, scratch, timeout, None, parse_size(as_limit) if as_limit else None, self.python_env(case))
+        problems = self.check_python_outcome(case, case.outcome.strip(), rc, out, err, hung, timeout)
+        if not problems:
+            problems = self.check_files(case, scratch)
+        if problems:
+            return "fail", "; ".join(problems)
+        exc = last_exception(err)
+        shown = f"{exc[0]}: {exc[1]}" if exc else (lines_of(err.strip()) or [""])[-1]
+        return "pass", f"{seconds:.2f} s, exit {rc}" + (f": {shown[:300]!r}" if shown else "")
+
+    def check_python_outcome(self, case, outcome, rc, out, err, hung, timeout):
+        if hung:
+            return [f"no result within {timeout:g} s (a hang)"]
+        problems = []
+        both = out + "\n" + err
+        crashes = [m for m in PY_CRASH_MARKERS if m in both]
+        if crashes:
+            problems.append(f"{crashes[0]!r} in the output")
+        exc = last_exception(err)
+        interrupted = rc == -signal.SIGINT and exc is not None and short_type(exc[0]) == "KeyboardInterrupt"
+        got = describe_python(rc, exc, err)
+        if rc < 0 and not interrupted:
+            name = signal.Signals(-rc).name if -rc in signal.Signals._value2member_map_ else str(-rc)
+            return problems + [f"killed by signal {name}" + (f" ({got})" if exc else "")]
+        warnings = [line for line in lines_of(both) if PY_WARNING.match(line)]
+        for text in case.all("stdout"):
+            if text not in out:
+                problems.append(f"{text!r} is not on stdout")
+        if outcome == "refused":
+            if not any(python_matches(alternative, rc, exc, interrupted)
+                       for alternative in case.expect.strip().split(" || ")):
+                problems.append(f"expected {case.expect.strip()!r}, got {got}")
+        else:
+            problems += self.check_not_refused(case, outcome, rc, warnings, got)
+        return problems
 
     def check(self, case, outcome, rc, out, err, hung, timeout, names=()):
         problems = []
@@ -480,7 +600,15 @@ class Runner:
                 hit = [w for w in warnings if extra in w]
                 if len(warnings) != 1 or not hit:
                     problems.append(f"expected one warning containing {extra!r}, got {warnings[:3]!r}")
-        elif outcome == "warned":
+        else:
+            problems += self.check_not_refused(case, outcome, rc, warnings, got, names)
+        return problems
+
+    @staticmethod
+    def check_not_refused(case, outcome, rc, warnings, got, names=()):
+        """What is wrong with a case that should have been warned or accepted."""
+        problems = []
+        if outcome == "warned":
             if rc != 0:
                 problems.append(f"expected warned (exit 0), got {got}")
             if len(warnings) != 1:
@@ -559,6 +687,54 @@ def file_names(argv):
     return names
 
 
+EXCEPTION_LINE = re.compile(r"^([A-Za-z_][\w.]*)(?::(?: (.*))?)?$")
+
+
+def last_exception(err):
+    """(class name, message) of the last traceback on stderr, or None. The message runs to the
+    end of stderr (pybind11's TypeErrors span several lines)."""
+    at = err.rfind("Traceback (most recent call last):")
+    if at < 0:
+        return None
+    lines = lines_of(err[at:])[1:]
+    for k, line in enumerate(lines):
+        if line and not line[0].isspace():
+            m = EXCEPTION_LINE.match(line)
+            if not m:
+                return None
+            rest = "\n".join([m.group(2) or ""] + lines[k + 1:]).strip("\n")
+            return m.group(1), rest
+    return None
+
+
+def short_type(name):
+    return name.rsplit(".", 1)[-1]
+
+
+def describe_python(rc, exc, err):
+    if exc:
+        return f"exit {rc}: {short_type(exc[0])}: {exc[1][:300]!r}"
+    lines = [line for line in lines_of(err) if line.strip()]
+    return f"exit {rc}" + (f", no exception; stderr ends {lines[-1][:300]!r}" if lines else ", no exception")
+
+
+def python_matches(alternative, rc, exc, interrupted):
+    """One alternative of a refused python case's `expect`: "TYPE: a && !b" or "TYPE"."""
+    kind, _, text = alternative.strip().partition(": ")
+    kind = kind.strip().rstrip(":")
+    if kind == "SystemExit":
+        return exc is None and rc == int(text.strip() or "0")
+    if exc is None or short_type(exc[0]) != kind or not (rc == 1 or interrupted):
+        return False
+    for part in (p.strip() for p in text.split(" && ") if p.strip()):
+        if part.startswith("!") and len(part) > 1:
+            if part[1:] in exc[1]:
+                return False
+        elif part not in exc[1]:
+            return False
+    return True
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--binary", required=True, help="the pbfengine binary under test")
@@ -568,6 +744,9 @@ def main():
     p.add_argument("--timeout", type=float, default=10.0, help="wall-clock seconds per run")
     p.add_argument("--keep", action="store_true", help="keep the scratch directory")
     p.add_argument("-v", "--verbose", action="store_true", help="print every case")
+    p.add_argument("--python", default=sys.executable,
+                   help="the interpreter of the python group's programs (default: this one)")
+    p.add_argument("--pythonpath", help="where the module pbfengine is (default: the binary's directory/python)")
     args = p.parse_args()
     if not os.access(args.binary, os.X_OK):
         raise SystemExit(f"replay.py: {args.binary} is not an executable")
@@ -586,6 +765,12 @@ def main():
     start = time.monotonic()
     results = {}
     try:
+        if any(c.group == "python" for c in cases):
+            runner.python_optional = not args.group or "python" not in args.group
+            runner.check_python()
+            if runner.python_problem:
+                print(f"python group: {runner.python_problem}" +
+                      (" (its cases skipped)" if runner.python_optional else ""))
         if any(c.all("derive") or "/" in c.outcome for c in cases):
             runner.make_base()  # before the threads start: they only read it
         def one(c):
@@ -610,19 +795,23 @@ def main():
     by_group = {}
     for c in cases:
         status, detail = results[c.full]
-        g = by_group.setdefault(c.group, {"pass": 0, "fail": 0, "skip": 0})
+        g = by_group.setdefault(c.group, {"pass": 0, "fail": 0, "skip": 0, "xfail": 0})
         g[status] += 1
         if status == "fail":
             print(f"FAIL {c.full} ({c.outcome}; cases.tsv:{c.lineno}): {detail}")
+        elif status == "xfail" and not args.verbose:
+            print(f"xfail {c.full}: {c.get('xfail')}")
         elif args.verbose:
             print(f"{status:4} {c.full}: {detail}")
     total = len(cases)
     failed = sum(g["fail"] for g in by_group.values())
     skipped = sum(g["skip"] for g in by_group.values())
-    parts = ", ".join(f"{g} {v['fail']}/{v['pass'] + v['fail'] + v['skip']}" for g, v in sorted(by_group.items()))
+    xfailed = sum(g["xfail"] for g in by_group.values())
+    parts = ", ".join(f"{g} {v['fail']}/{sum(v.values())}" for g, v in sorted(by_group.items()))
     precision = f", {runner.precision} build" if runner.precision else ""
-    print(f"hostile: {total} cases, {total - failed - skipped} passed, {failed} failed, {skipped} skipped "
-          f"in {time.monotonic() - start:.1f} s{precision}; failed by group: {parts}")
+    known = f", {xfailed} known defects (xfail)" if xfailed else ""
+    print(f"hostile: {total} cases, {total - failed - skipped - xfailed} passed, {failed} failed, {skipped} skipped"
+          f"{known} in {time.monotonic() - start:.1f} s{precision}; failed by group: {parts}")
     return 1 if failed else 0
 
 

@@ -1,0 +1,20 @@
+# Ctrl-C while a callback runs Python code (a loop that waits)
+# Expected: refused, Interrupted: KeyboardInterrupt || Interrupted: Ctrl-C || KeyboardInterrupt
+import os
+import signal
+import time as time_module
+import pbfengine
+sim = pbfengine.Simulation(log=None, log_level="warn")
+sim.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))
+sim.kernel_radius(0.02)
+sim.timestep(0.001)
+sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=0.01)  # 64 particles
+sim.fix("gravity", "gravity")
+sim.fix("pbf", "pbf")
+sim.fix("walls", "box")
+def watch(step, time):
+    os.kill(os.getpid(), signal.SIGINT)
+    while True:
+        time_module.sleep(0.05)
+sim.every("watch", 1, watch)
+sim.run(3)

@@ -1,0 +1,18 @@
+# a callback raising an exception whose str() fails
+# Expected: refused, Interrupted: callback 'watch'
+import pbfengine
+sim = pbfengine.Simulation(log=None, log_level="warn")
+sim.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))
+sim.kernel_radius(0.02)
+sim.timestep(0.001)
+sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=0.01)  # 64 particles
+sim.fix("gravity", "gravity")
+sim.fix("pbf", "pbf")
+sim.fix("walls", "box")
+class Unprintable(Exception):
+    def __str__(self):
+        raise RuntimeError("no str")
+def watch(step, time):
+    raise Unprintable()
+sim.every("watch", 1, watch)
+sim.run(3)

@@ -1,0 +1,8 @@
+# a lattice velocity function returning two numbers
+# Expected: refused, Error: lattice && velocity && 2 values
+import pbfengine
+sim = pbfengine.Simulation(log=None, log_level="warn")
+sim.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))
+sim.kernel_radius(0.02)
+sim.timestep(0.001)
+sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=0.01, velocity=lambda x, y, z: (1, 2))

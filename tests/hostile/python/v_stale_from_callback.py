@@ -1,0 +1,15 @@
+# a view taken in a callback, used after the run
+# Expected: refused, StaleViewError: 'position[2]' && taken at step 1
+import pbfengine
+sim = pbfengine.Simulation(log=None, log_level="warn")
+sim.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))
+sim.kernel_radius(0.02)
+sim.timestep(0.001)
+sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=0.01)  # 64 particles
+sim.fix("gravity", "gravity")
+sim.fix("pbf", "pbf")
+sim.fix("walls", "box")
+taken = []
+sim.every("take", 1, lambda step, time: taken.append(sim.field("position").z))
+sim.run(2)
+taken[0].max()

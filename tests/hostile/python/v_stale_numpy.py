@@ -1,0 +1,15 @@
+# a view given to a NumPy function after a run
+# Expected: refused, StaleViewError: 'position[2]' && taken at step 0 && field('position')
+import numpy
+import pbfengine
+sim = pbfengine.Simulation(log=None, log_level="warn")
+sim.domain(lo=(0, 0, 0), hi=(0.1, 0.1, 0.1))
+sim.kernel_radius(0.02)
+sim.timestep(0.001)
+sim.lattice(lo=(0.02, 0.02, 0.02), hi=(0.06, 0.06, 0.06), spacing=0.01)  # 64 particles
+sim.fix("gravity", "gravity")
+sim.fix("pbf", "pbf")
+sim.fix("walls", "box")
+z = sim.field("position").z
+sim.run(1)
+numpy.mean(z)
