@@ -10,7 +10,8 @@ cd "$(dirname "$0")"
 packages=(g++ cmake make pkg-config liblua5.4-dev libspdlog-dev libfmt-dev libcli11-dev libgtest-dev
           libbenchmark-dev libstb-dev fonts-dejavu-core libpugixml-dev zlib1g-dev libassimp-dev libopenvdb-dev libhwy-dev openmpi-bin libopenmpi-dev ffmpeg
           python3 python3-numpy python3-matplotlib
-          pybind11-dev python3-pytest python3-mpi4py python3-nbconvert python3-ipykernel)
+          pybind11-dev python3-pytest python3-mpi4py python3-nbconvert python3-ipykernel
+          libcpp-httplib-dev nlohmann-json3-dev libjs-three chromium chromium-driver python3-selenium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -56,6 +56,21 @@ std::optional<int> parse_threads(const std::string& text) {
   return n;
 }
 
+// --view PORT: a whole number 0 .. 65535; nothing when the text is not one.
+std::optional<int> parse_port(const std::string& text) {
+  if (text.empty() || text.size() > 5 || text.find_first_not_of("0123456789") != std::string::npos) return {};
+  const int n = std::stoi(text);
+  if (n > 65535) return {};
+  return n;
+}
+
+// --view: the `view` fix the command line adds before the script runs.
+struct ViewOptions {
+  int port;
+  std::string address;
+  bool allow_remote;
+};
+
 // Now, local time, in ISO 8601: 2026-11-21T14:05:09+01:00.
 std::string iso8601_now() {
   const std::time_t now = std::time(nullptr);
@@ -144,13 +159,35 @@ struct DebugChecks {
 };
 
 int run_script(const std::string& file, const std::vector<std::pair<std::string, std::string>>& variables,
-               const DebugChecks& checks, const std::vector<std::string>& words, const std::string& log_path) {
+               const DebugChecks& checks, const std::optional<ViewOptions>& view, std::vector<std::string> words,
+               const std::string& log_path) {
   std::unique_ptr<pbf::Simulation> sim;
   std::unique_ptr<pbf::Script> script;
   try {
     sim = std::make_unique<pbf::Simulation>();
     sim->set_check_every_hook(checks.every_hook);
     sim->set_check_ghosts(checks.ghosts);
+    if (view) {  // served before the script runs: a port in use stops the command at once
+      try {
+        sim->add_fix(pbf::StyleRegistry::builtin().make_fix(
+            "view", "view",
+            {{"port", std::int64_t{view->port}},
+             {"address", view->address},
+             {"allow_remote", view->allow_remote},
+             {"title", std::filesystem::path(file).filename().string()}}));
+      } catch (const pbf::Error& e) {
+        std::string message = e.what();
+        const std::string fix = "fix 'view' (view): ";
+        if (message.rfind(fix, 0) == 0) message.erase(0, fix.size());
+        return fail(fmt::format("--view: {}", message), 1);
+      }
+      // A continuation serves on the port this run took, where a page left open looks for it.
+      const int port = sim->find_fix("view")->run_view()->port();
+      for (std::size_t i = 0; i < words.size(); ++i) {
+        if (words[i] == "--view" && i + 1 < words.size()) words[i + 1] = std::to_string(port);
+        if (words[i].rfind("--view=", 0) == 0) words[i] = fmt::format("--view={}", port);
+      }
+    }
     script = std::make_unique<pbf::Script>(*sim);
     script->set_variables(variables);
     script->run_file(file);
@@ -198,6 +235,17 @@ int main(int argc, char** argv) {
                 "in one process, read every neighbour through a ghost copy and fill scratch arrays with NaN "
                 "before each fix, so a fix that misses a ghost refresh (what MPI runs need) changes the result "
                 "or stops the run (a debugging aid for writing fixes)");
+  std::string view_port_text, view_address = "127.0.0.1";
+  bool view_allow_remote = false;
+  run->add_option("--view", view_port_text,
+                  "watch the run live in a web browser: serve it on this port of 127.0.0.1 (0: a free one; the "
+                  "address to open is printed; docs/view.md)")
+      ->type_name("PORT");
+  run->add_option("--view-address", view_address,
+                  "serve the view on this address (only with --view-allow-remote unless it is the loopback)")
+      ->type_name("ADDRESS");
+  run->add_flag("--view-allow-remote", view_allow_remote,
+                "allow --view-address to be an address other machines reach (anyone with the token can stop the run)");
   std::string vectors = "auto";
   run->add_option("--vectors", vectors,
                   "widest vector instructions of the pair loops: auto (the widest this machine has), avx512, avx2, "
@@ -264,6 +312,16 @@ int main(int argc, char** argv) {
           fmt::format("--threads must be a whole number {}, got '{}'", thread_range(), threads_text));
   }
   if (log_path.empty()) return command_line_error("--log needs a file name, or 'none' for no log");
+  std::optional<ViewOptions> view;
+  if (run->count("--view")) {
+    const std::optional<int> port = parse_port(view_port_text);
+    if (!port)
+      return command_line_error(
+          fmt::format("--view must be a port number from 0 to 65535 (0: a free one), got '{}'", view_port_text));
+    view = ViewOptions{*port, view_address, view_allow_remote};
+  } else if (run->count("--view-address") || view_allow_remote) {
+    return command_line_error("--view-address and --view-allow-remote go with --view PORT");
+  }
   try {
     pbf::limit_vectors(vectors);
   } catch (const pbf::Error& e) {
@@ -317,7 +375,7 @@ int main(int argc, char** argv) {
   else
     spdlog::info("pbfengine {} on {} OpenMP thread{} ({})", PBF_VERSION, threads.threads, s, threads.why);
   for (const std::string& warning : threads.warnings) spdlog::warn("{}", warning);
-  const int code = run_script(file, variables, checks, std::vector<std::string>(argv, argv + argc),
+  const int code = run_script(file, variables, checks, view, std::vector<std::string>(argv, argv + argc),
                               log_path);
   pbf::comm::stop();
   if (!pbf::log_file::close())

@@ -21,6 +21,7 @@ class BodyForce;
 class ByteWriter;
 class ByteReader;
 class ParticleFlow;
+class RunView;
 
 // Order within a stage: the solver first, then other fixes, then boundaries, then outputs,
 // each group in script order. So in each constraint iteration the density correction runs
@@ -91,6 +92,9 @@ class Fix {
   // The mass of each particle this fix creates during a run (an emitter's; 0: it creates
   // none): a scene that starts empty takes its constants from it (Simulation::particle_mass).
   virtual double created_mass(const Simulation&) const { return 0; }
+  // A live view of the run this fix serves (the `view` fix; nullptr: none). The run loop
+  // agrees its wishes after every step (engine/core/run_view.hpp).
+  virtual RunView* run_view() { return nullptr; }
   // The domain's faces this fix leaves open (the box fix's `open`): x-, x+, y-, y+, z-, z+.
   virtual std::array<bool, 6> open_faces() const { return {}; }
   // Whether this fix removes a particle at q (a sink's region), so that an emitter can refuse
@@ -133,6 +137,9 @@ class Fix {
   // to the next step, a random generator): saved in restarts and handed back, after a read,
   // to the fix of the same id and style. restore_state must read exactly what save_state wrote.
   virtual void save_state(ByteWriter&) const {}
+  // Whether a restart records this fix (a continuation with a different pipeline is warned
+  // about); the live view is left out: a run continues the same watched or not.
+  virtual bool in_restarts() const { return true; }
   virtual void restore_state(ByteReader&) {}
   // A fix that writes restarts writes one now (on Ctrl-C) and returns its path.
   virtual std::optional<std::string> write_restart_now(Simulation&) { return std::nullopt; }

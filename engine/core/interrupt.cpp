@@ -1,5 +1,6 @@
 #include "engine/core/interrupt.hpp"
 
+#include <algorithm>
 #include <csignal>
 #include <span>
 #include <unistd.h>
@@ -54,11 +55,14 @@ InterruptWatch::~InterruptWatch() {
   sigaction(SIGUSR1, &previous_user1, nullptr);
 }
 
-InterruptWatch::Requests InterruptWatch::requested() {
-  double seen[2] = {interrupt_flag != 0 ? 1.0 : 0.0, restart_flag != 0 ? 1.0 : 0.0};
+InterruptWatch::Requests InterruptWatch::requested(const ViewWishes& view) {
+  double seen[2 + ViewWishes::kCount] = {interrupt_flag != 0 ? 1.0 : 0.0, restart_flag != 0 ? 1.0 : 0.0};
   if (seen[1] > 0) restart_flag = 0;  // one restart a signal (one arriving now waits for the next step)
+  ViewWishes wished = view;
+  std::copy(wished.data(), wished.data() + ViewWishes::kCount, seen + 2);
   comm::max(std::span<double>(seen));
-  Requests r{seen[0] > 0, seen[1] > 0, stop_reason};
+  Requests r{seen[0] > 0, seen[1] > 0, stop_reason, {}};
+  std::copy(seen + 2, seen + 2 + ViewWishes::kCount, r.view.data());
   if (r.stop && r.reason.empty())
     r.reason = interrupt_flag != 0 || !comm::distributed() ? "interrupted (Ctrl-C)" : "stopped by another rank";
   return r;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/core/error.hpp"
+#include "engine/core/run_view.hpp"
 
 namespace pbf {
 
@@ -20,11 +21,13 @@ class InterruptWatch {
   // What the signals since the last call ask for. Collective in a distributed run (one
   // reduction): the ranks see a signal at slightly different times, and all act after the
   // same step, the first at which any of them saw it.
+  // A live view's wishes (engine/core/run_view.hpp) are agreed in the same reduction.
   struct Requests {
     bool stop = false, restart = false;
     std::string reason;  // a stop's: "interrupted (Ctrl-C)", or what request_stop said
+    ViewWishes view;     // the largest over the ranks: rank 0's
   };
-  static Requests requested();
+  static Requests requested(const ViewWishes& view = {});
   // Asks, from inside a step (a Python callback that raised), for the stop Ctrl-C makes:
   // after the step, with a restart; the message starts with `reason`.
   static void request_stop(const std::string& reason);

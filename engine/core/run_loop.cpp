@@ -77,6 +77,9 @@ void RunLoop::prepare() {
   const double h = sim_.h_;
   full_neighborhood_ = 4.0 / 3.0 * M_PI * h * h * h * sim_.rest_density_ / sim_.particle_mass();
 
+  view_ = nullptr;
+  for (const auto& f : sim_.fixes_)
+    if (RunView* v = f->run_view()) view_ = v;
   neighbors_ = false;
   for (auto& hooks : hooks_) hooks.clear();
   std::fill(std::begin(most_iterations_), std::end(most_iterations_), 1);
@@ -179,8 +182,10 @@ void RunLoop::run(std::int64_t steps, double until) {
   sim_.running_ = true;
   P.freeze(true);
   sim_.decomposition_.reset_seconds();
-  sim_.thermo_.start_run(sim_);
   const std::int64_t first = sim_.step_, last = first + steps;
+  held_seconds_ = 0;
+  if (view_) view_->run_starts(sim_, steps >= 0 ? last : -1, until);  // before thermo's first line
+  sim_.thermo_.start_run(sim_);
   const double t0 = sim_.time(), end = until - 1e-12 * std::max(1.0, std::fabs(until));
   auto more = [&] { return steps >= 0 ? sim_.step_ < last : sim_.time() < end; };
   double next_progress = start + 10.0;
@@ -195,21 +200,16 @@ void RunLoop::run(std::int64_t steps, double until) {
                                 "{:.3g} more steps",
                                 sim_.step_, sim_.dt_, sim_.time(), until, (until - sim_.time()) / sim_.dt_));
     } catch (const Error& e) {
+      if (view_) view_->run_ends(sim_, "failed", e.what());
       // A failed step leaves the newest restart valid: say where to continue from (the
       // command line adds how).
       const RestartNote& note = sim_.last_restart();
       if (note.path.empty()) throw;
       throw Error(fmt::format("{}; the last restart is '{}' (step {})", e.what(), note.path, note.step), e.located());
     }
-    const InterruptWatch::Requests signals = InterruptWatch::requested();
-    if (signals.stop) stop_interrupted(signals.reason);
-    if (signals.restart) {
-      const std::string path = write_restart_now("signal");
-      spdlog::info("SIGUSR1: wrote restart '{}' after step {} (t = {} s); the run goes on", path, sim_.step_,
-                   sim_.time());
-    }
+    after_step();
     if (now() >= next_progress) {
-      const double elapsed = now() - start;
+      const double elapsed = now() - start - held_seconds_;
       const double done = steps >= 0 ? static_cast<double>(sim_.step_ - first) / static_cast<double>(steps)
                                      : (sim_.time() - t0) / (until - t0);
       spdlog::info("progress: step {}, t = {:.6g} s ({:.0f}%), {:.1f} steps/s, about {:.0f} s left", sim_.step_,
@@ -219,11 +219,12 @@ void RunLoop::run(std::int64_t steps, double until) {
     }
   }
   for (const auto& f : sim_.fixes_) f->finish(sim_);
+  if (view_) view_->run_ends(sim_, "finished", "");
   if (!P.distributed() && P.ghosts() > 0) {  // between runs the particles have no images or copies
     P.drop_ghosts();
     sim_.lists_valid_ = false;
   }
-  timing_.wall_seconds = now() - start;
+  timing_.wall_seconds = now() - start - held_seconds_;
   timing_.steps = sim_.step_ - first;
   timing_.particles = sim_.global_count();
   if (sim_.particles_.distributed()) {
@@ -293,6 +294,28 @@ void RunLoop::step() {
   const double t1 = now();
   sim_.thermo_.end_of_step(sim_);
   timing_.add(row_thermo_, now() - t1);
+}
+
+void RunLoop::after_step() {
+  InterruptWatch::Requests signals = InterruptWatch::requested(view_ ? view_->wishes() : ViewWishes{});
+  auto held = [&] { return signals.view.pause > 0 && signals.view.step == 0 && !signals.stop; };
+  if (view_) view_->act(sim_, signals.view, held());
+  // Held by the view: every rank asks again, in the same reduction, until a viewer resumes,
+  // steps or stops the run (or a signal stops it).
+  const double hold_start = now();
+  for (;;) {
+    if (signals.stop) stop_interrupted(signals.reason);
+    if (signals.restart) {
+      const std::string path = write_restart_now("signal");
+      spdlog::info("SIGUSR1: wrote restart '{}' after step {} (t = {} s); the run goes on", path, sim_.step_,
+                   sim_.time());
+    }
+    if (!held()) break;
+    view_->wait(0.05);
+    signals = InterruptWatch::requested(view_->wishes());
+    view_->act(sim_, signals.view, held());
+  }
+  held_seconds_ += now() - hold_start;
 }
 
 // A repeated stage: its hooks, in order, until every one says it is done or the largest

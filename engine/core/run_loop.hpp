@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/run_view.hpp"
 #include "engine/core/simulation.hpp"
 
 namespace pbf {
@@ -46,11 +47,16 @@ class RunLoop {
   std::string blew_up(std::size_t i) const;
   void check_clumping() const;
   [[noreturn]] void stop_interrupted(const std::string& reason);
+  // After a step: what signals and the live view ask for, agreed over the ranks; holds the run
+  // while the view pauses it.
+  void after_step();
   std::string write_restart_now(const char* prefix);
   double now() const { return omp_get_wtime(); }
 
   Simulation& sim_;
   TimingTable& timing_ = sim_.timing_;
+  RunView* view_ = nullptr;  // the live view's fix, if the pipeline has one
+  double held_seconds_ = 0;  // time the view held the run: not the run's speed
   std::array<std::vector<Hook>, kStageCount> hooks_;
   void iterate(Stage stage, Simulation::SolverReport::Loop& report);
   int most_iterations_[kStageCount] = {};  // of each repeated stage (at least 1)

@@ -97,9 +97,10 @@ std::string RunLoop::write_restart_now(const char* prefix) {
 void RunLoop::stop_interrupted(const std::string& reason) {
   for (const auto& f : sim_.fixes_) f->finish(sim_);
   const std::string path = write_restart_now("interrupted");
-  throw Interrupted(fmt::format("{} after step {} (t = {} s): wrote restart '{}'", reason, sim_.step_,
-                                sim_.time(), path),
-                    path);
+  const std::string message =
+      fmt::format("{} after step {} (t = {} s): wrote restart '{}'", reason, sim_.step_, sim_.time(), path);
+  if (view_) view_->run_ends(sim_, "stopped", message);
+  throw Interrupted(message, path);
 }
 
 // Particles packed at many times the rest density: the solver has failed (a time step too

@@ -164,7 +164,7 @@ void Simulation::warn_unmatched_states() {
     spdlog::warn("fix '{}' ({}) is in restart '{}' but not in the pipeline: its saved state is dropped", s.id,
                  s.style, saved_states_source_);
   for (const auto& f : fixes_)
-    if (std::find(fixes_matched_.begin(), fixes_matched_.end(), f->id()) == fixes_matched_.end())
+    if (f->in_restarts() && std::find(fixes_matched_.begin(), fixes_matched_.end(), f->id()) == fixes_matched_.end())
       spdlog::warn("fix '{}' ({}) is not in restart '{}': it starts afresh", f->id(), f->style(),
                    saved_states_source_);
   saved_states_.clear();

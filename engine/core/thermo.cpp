@@ -184,6 +184,8 @@ void Thermo::output(Simulation& sim) {
     if (!std::isfinite(v[k]))  // an overflow the finite-position check cannot see (v^2 in the energy)
       throw Error(fmt::format("step {}: thermo column '{}' is {}: the state has overflowed", sim.step(), columns_[k],
                               v[k]));
+  last_line_ = v;
+  ++lines_output_;
   std::string line;
   for (std::size_t k = 0; k < v.size(); ++k) line += fmt::format("{:>{}.7g}", v[k], width(columns_[k]));
   spdlog::info("{}", line);

@@ -29,6 +29,10 @@ class Thermo {
   void end_of_step(Simulation& sim);
   // The values of the columns now.
   std::vector<double> values(Simulation& sim) const;
+  // The lines output so far, and the last one's values (the live view follows them).
+  std::int64_t lines_output() const { return lines_output_; }
+  const std::vector<double>& last_line() const { return last_line_; }
+  std::int64_t last_line_step() const { return last_step_; }
 
  private:
   static void check(const Simulation& sim, const std::vector<std::string>& columns);
@@ -43,6 +47,8 @@ class Thermo {
   std::string csv_path_;
   std::ofstream csv_;
   std::int64_t last_step_ = -1;
+  std::int64_t lines_output_ = 0;
+  std::vector<double> last_line_;
 };
 
 }  // namespace pbf

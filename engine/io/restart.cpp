@@ -64,8 +64,10 @@ std::vector<FieldId> restart_fields(const Particles& P) {
 }
 
 void put_restart_states(ByteWriter& w, const Simulation& sim) {
-  w.put(static_cast<std::uint32_t>(sim.fixes().size()));
-  for (const auto& fix : sim.fixes()) {
+  const auto& fixes = sim.fixes();
+  w.put(static_cast<std::uint32_t>(std::count_if(fixes.begin(), fixes.end(), [](const auto& f) { return f->in_restarts(); })));
+  for (const auto& fix : fixes) {
+    if (!fix->in_restarts()) continue;
     ByteWriter state;
     fix->save_state(state);
     w.put_string(fix->id());

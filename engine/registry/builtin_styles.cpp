@@ -26,6 +26,7 @@ void register_builtin_styles(StyleRegistry& r) {
   register_dump_movie(r);
   register_restart(r);
   register_sample(r);
+  register_view(r);
   register_compute_density(r);
   register_compute_density_error(r);
   register_compute_iterations(r);

@@ -30,6 +30,7 @@ void register_emitter(StyleRegistry&);
 void register_dump_text(StyleRegistry&);
 void register_dump_vtk(StyleRegistry&);
 void register_dump_image(StyleRegistry&);
+void register_view(StyleRegistry&);
 void register_dump_surface(StyleRegistry&);
 void register_dump_movie(StyleRegistry&);
 void register_restart(StyleRegistry&);

@@ -118,6 +118,7 @@ EXTRA = {
                  ("speed", "0.5")]),
     "dump/text": ('pbf.fix("frames", "dump/text", {%s})', [("path", '"out/f_*.txt"'), ("every", "1")]),
     "dump/vtk": ('pbf.fix("frames", "dump/vtk", {%s})', [("path", '"out/f_*.vtu"'), ("every", "1")]),
+    "view": ('pbf.fix("view", "view", {%s})', []),
     "dump/image": ('pbf.fix("pictures", "dump/image", {%s})',
                    [("path", '"out/i_*.png"'), ("every", "1"), ("width", "32"), ("height", "24")]),
     "dump/surface": ('pbf.fix("surface", "dump/surface", {%s})', [("path", '"out/s_*.ply"'), ("every", "1")]),
@@ -266,6 +267,7 @@ NUMERIC = [
     ("dump/image", "min", "num", "RRRAAR", [], "min <= max (0): 0 is each frame's range, 1e300 exceeds max"),
     ("dump/image", "max", "num", "RRRARA", [], "max >= min (0): -1 is below it, 1e300 a legal wide scale"),
     ("dump/image", "width", "int", "RRRRRR", [], "pixels, 16 to 8192"),
+    ("view", "port", "int", "RRRARR", [], "a TCP port, 0 (a free one) to 65535"),
     ("dump/image", "height", "int", "RRRRRR", [], "pixels, 16 to 8192"),
     ("dump/image", "direction", "vec", "RRRRAA", [], "any finite non-zero vector not along 'up': "
      "{0,0,0} has no direction, {1e300,1e300,1e300} is a direction like any other"),
@@ -903,6 +905,20 @@ def gen_lua_rules(g):
     add("interval_text_equal", "dump/text interval 0.002 s, run of 0.002 s: legal",
         scene + pipe + ['pbf.fix("frames", "dump/text", {path = "out/f_*.txt", interval = 0.002})', "pbf.run(2)"],
         "accepted", "line")
+
+    g.section("The live view from a script (docs/view.md): an address reachable from elsewhere, two views, "
+              "an unknown colour field.")
+    add("view_public_address", "view on 0.0.0.0 without allow_remote: refused at the fix",
+        scene + pipe + ['@pbf.fix("view", "view", {address = "0.0.0.0"})', "pbf.run(2)"], "refused", "line",
+        "0.0.0.0 && allow_remote")
+    add("view_two", "two views: refused at the second",
+        scene + pipe + ['pbf.fix("view", "view", {})', '@pbf.fix("view2", "view", {})', "pbf.run(2)"], "refused",
+        "line", "live view")
+    add("view_unknown_colour", "view coloured by a field the run does not have: refused at the run",
+        scene + pipe + ['pbf.fix("view", "view", {color = "temperature"})', "@pbf.run(2)"], "refused", "line",
+        "temperature")
+    add("view_free_port", "view on a free port, nobody watching: legal",
+        scene + pipe + ['pbf.fix("view", "view", {port = 0})', "pbf.run(2)"], "accepted", "line")
 
     g.section("Scripts that fight the engine: errors of every kind, calls from callbacks, binary chunks.")
     add("lua_syntax", "a syntax error: refused with Lua's message", scene + ["@pbf.fix(= 1)"], "refused", "line")
@@ -2179,6 +2195,22 @@ def gen_cli(g):
         ("run_threads_overflow", f"run {ok} --threads 99999999999999999999", "refused", "threads", "exit=2"),
         ("run_threads_missing", f"run {ok} --threads", "refused", "threads", "exit=2; raw"),
         ("run_log_level_loud", f"run {ok} --log-level loud", "refused", "loud", "exit=2; raw"),
+        # The live view (docs/view.md): a port, an address, refused before the run starts.
+        ("run_view_word", f"run {ok} --view abc", "refused", "--view && abc", "exit=2"),
+        ("run_view_negative", f"run {ok} --view -1", "refused", "--view", "exit=2"),
+        ("run_view_too_large", f"run {ok} --view 70000", "refused", "--view && 70000", "exit=2"),
+        ("run_view_fraction", f"run {ok} --view 80.5", "refused", "--view && 80.5", "exit=2"),
+        ("run_view_missing", f"run {ok} --view", "refused", "--view", "exit=2; raw"),
+        ("run_view_address_alone", f"run {ok} --view-address 127.0.0.1", "refused", "--view PORT", "exit=2"),
+        ("run_view_remote_alone", f"run {ok} --view-allow-remote", "refused", "--view PORT", "exit=2"),
+        ("run_view_address_public", f"run {ok} --view 0 --view-address 0.0.0.0", "refused",
+         "0.0.0.0 && ssh tunnel && --view-allow-remote", ""),
+        ("run_view_address_not_here", f"run {ok} --view 0 --view-address 10.255.255.1 --view-allow-remote", "refused",
+         "10.255.255.1 && not an address of this machine", ""),
+        ("run_view_address_name", f"run {ok} --view 0 --view-address no.such.host --view-allow-remote", "refused",
+         "no.such.host && numeric", "timeout=20"),
+        ("run_view_address_ipv6_garbage", f"run {ok} --view 0 --view-address ::gg", "refused", "::gg", ""),
+        ("run_view_free_port", f"run {ok} --view 0", "accepted", "-", ""),
         ("help_unknown_style", "help nope", "refused", "nope", ""),
         ("help_two_styles", "help pbf box", "refused", "box", "exit=2"),
         ("run_threads_1", f"run {ok} --threads 1", "accepted", "-", ""),
