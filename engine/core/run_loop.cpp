@@ -111,6 +111,7 @@ void RunLoop::prepare() {
     for (Hook& hook : hooks_[s]) hook.row = timing_.row(stage, fmt::format("{} ({})", hook.fix->id(), hook.fix->style()));
   }
   row_thermo_ = timing_.row("end_of_step", "thermo");
+  if (view_) row_view_ = timing_.row("end_of_step", "live view (frames, pictures)");
   row_checks_ = timing_.row("checks", "non-finite values, domain");
 }
 
@@ -299,7 +300,11 @@ void RunLoop::step() {
 void RunLoop::after_step() {
   InterruptWatch::Requests signals = InterruptWatch::requested(view_ ? view_->wishes() : ViewWishes{});
   auto held = [&] { return signals.view.pause > 0 && signals.view.step == 0 && !signals.stop; };
-  if (view_) view_->act(sim_, signals.view, held());
+  if (view_) {
+    const double t0 = now();
+    view_->act(sim_, signals.view, held());
+    timing_.add(row_view_, now() - t0);
+  }
   // Held by the view: every rank asks again, in the same reduction, until a viewer resumes,
   // steps or stops the run (or a signal stops it).
   const double hold_start = now();

@@ -61,6 +61,7 @@ class RunLoop {
   void iterate(Stage stage, Simulation::SolverReport::Loop& report);
   int most_iterations_[kStageCount] = {};  // of each repeated stage (at least 1)
   bool neighbors_ = false;
+  std::size_t row_view_ = 0;  // the live view's work after each step (frames, pictures)
   std::size_t row_reorder_ = 0, row_binning_ = 0, row_lists_ = 0, row_checks_ = 0, row_thermo_ = 0, row_migrate_ = 0, row_ghosts_ = 0;
   double neighbor_mean_sum_ = 0;
   long long neighbor_builds_ = 0;

@@ -10,7 +10,9 @@ scenarios/init_file.lua, timed by the timing table's loop time, in turns:
             offered (what the page does, without drawing): the most frames the run sends
   browser   (with --browser) --view 0 and the real page in headless Chromium, drawing
 
-prints each run's loop time and frames, the medians and their ratios to `plain`.
+prints each run's loop time, frames and the share of the loop the timing table's "live view"
+row took (the run's own work for the view: the gathers), the medians and their ratios to
+`plain`.
 
     python3 share/benchmarks/view_cost.py --binary build/pbfengine [--repeats 5] [--steps 200]
         [--particles 33750] [--threads 2] [--browser]
@@ -96,7 +98,10 @@ def run(args, scene, out, mode):
     seconds = [float(m.group(1)) for m in (re.search(r"^Timing: .* in ([0-9.]+) s$", l) for l in text) if m]
     if process.returncode != 0 or not seconds:
         sys.exit(f"view_cost: the {mode} run failed:\n{''.join(text[-20:])}")
-    return seconds[-1], frames[0]
+    # The run's own work for the view after each step (gathers, pictures): its timing row.
+    share = [float(m.group(1)) for m in (re.search(r"live view \(frames, pictures\)\s+[0-9.]+\s+([0-9.]+)%", l)
+                                         for l in text) if m]
+    return seconds[-1], frames[0], share[-1] if share else 0.0
 
 
 def main():
@@ -117,16 +122,18 @@ def main():
                         "--t-final", str(t_final), "-o", scene], check=True, stderr=subprocess.DEVNULL)
         print(f"# {time.strftime('%Y-%m-%d', time.gmtime())} {os.cpu_count()} cores, {args.particles} particles, "
               f"{args.steps} steps, {args.threads} threads")
-        times = {m: [] for m in modes}
+        times, shares = {m: [] for m in modes}, {m: [] for m in modes}
         for r in range(args.repeats):
             for mode in modes:  # in turns, so that drift in the machine's speed hits all alike
-                seconds, frames = run(args, scene, os.path.join(tmp, "frames"), mode)
+                seconds, frames, share = run(args, scene, os.path.join(tmp, "frames"), mode)
                 times[mode].append(seconds)
-                print(f"{mode:8s} {seconds:8.3f} s  {frames:5d} frames", flush=True)
+                shares[mode].append(share)
+                print(f"{mode:8s} {seconds:8.3f} s  {frames:5d} frames  view row {share:5.2f}%", flush=True)
         base = statistics.median(times["plain"])
         for mode in modes:
             m = statistics.median(times[mode])
-            print(f"median {mode:8s} {m:8.3f} s  ratio to plain {m / base:.4f}")
+            print(f"median {mode:8s} {m:8.3f} s  ratio to plain {m / base:.4f}  "
+                  f"view row {statistics.median(shares[mode]):.2f}%")
 
 
 if __name__ == "__main__":
