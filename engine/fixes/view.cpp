@@ -122,12 +122,10 @@ class View : public Fix, public RunView {
 
   void run_starts(Simulation& sim, std::int64_t last_step, double end_time) override {
     first_step_ = sim.step(), last_step_ = last_step, end_time_ = end_time;
-    start_time_ = sim.time();
-    started_ = omp_get_wtime();
     held_ = false, thermo_lines_ = sim.thermo().lines_output();  // its lines from here on
     step_ = sim.step(), frame_step_ = -2;
     solids_version_ = ~std::uint64_t{0};
-    rate_step_ = sim.step(), rate_clock_ = started_, rate_time_ = sim.time();
+    rate_step_ = sim.step(), rate_clock_ = omp_get_wtime(), rate_time_ = sim.time();
     steps_per_second_ = 0, sim_seconds_per_second_ = 0;
     const double spacing = ViewFrame::spacing(sim);  // collective
     if (!server_) return;
@@ -318,7 +316,7 @@ class View : public Fix, public RunView {
   std::uint64_t frame_seq_ = 0, solids_version_ = 0;
   std::int64_t first_step_ = 0, last_step_ = -1, thermo_lines_ = 0;
   std::int64_t step_ = -1, frame_step_ = -2;  // the step now, and of the last frame sent
-  double end_time_ = 0, start_time_ = 0, started_ = 0, status_at_ = -1e9;
+  double end_time_ = 0, status_at_ = -1e9;
   std::int64_t rate_step_ = 0;
   double rate_clock_ = 0, rate_time_ = 0, steps_per_second_ = 0, sim_seconds_per_second_ = 0;
   bool held_ = false;
